@@ -1,0 +1,38 @@
+// Hole detection (Pérez et al., Section IV, eq. 1): every closed loop of boundary edges.
+#pragma once
+
+#include <vector>
+
+#include "rangefill/mesh.h"
+#include "rangefill/topology.h"
+
+namespace rangefill {
+
+/// One closed loop of boundary edges B_ρ = {<v1,v2>, ..., <vp,v1>} (eq. 1).
+///
+/// `vertices` follow the orientation of the faces on the loop: each consecutive pair (v_k, v_k+1)
+/// is a half-edge of a mesh face, so the surface lies on the left of the loop and a triangle that
+/// fills the hole uses the pair as (v_k+1, v_k). A loop may pass a non-manifold vertex twice.
+struct BoundaryLoop {
+  int id = 0;                 // index in HoleSet::loops, stable for the same mesh
+  std::vector<int> vertices;  // ordered, first vertex not repeated at the end
+  double perimeter = 0;       // sum of edge lengths
+  double area = 0;            // |vector area| = |½ Σ p_k × p_k+1|: exact for a planar loop
+  int component = 0;          // component of the faces bordering it
+  bool is_outer_border = false;  // the longest loop (by perimeter) of its component
+};
+
+struct HoleSet {
+  std::vector<BoundaryLoop> loops;  // ordered by their first boundary half-edge
+  // Vertices on more than two boundary edges (loops touch there), in ascending order.
+  std::vector<int> pinched_vertices;
+  // Boundary edges that do not close into a loop (only next to non-manifold or misoriented edges).
+  int open_boundary_edges = 0;
+};
+
+/// Traces every boundary loop in O(boundary edges · valence) once the topology exists, walking the
+/// fan of faces at each loop vertex so that loops touching at a vertex are kept apart. Edges shared
+/// by more than two faces are not boundary edges and are left to MeshTopology's counts.
+HoleSet find_holes(const Mesh& mesh, const MeshTopology& topology);
+
+}  // namespace rangefill

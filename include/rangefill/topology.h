@@ -1,0 +1,53 @@
+// Adjacency of a triangle mesh: half-edges, their opposites, vertex-to-face incidence and edges.
+// Built in O(V + E) by a two-pass counting sort of the edges; no hashing, no per-vertex containers.
+#pragma once
+
+#include <vector>
+
+#include "rangefill/mesh.h"
+
+namespace rangefill {
+
+/// Half-edge h = 3·f + i of face f runs from corner i to corner (i + 1) % 3 (face orientation).
+inline int halfedge_face(int h) { return h / 3; }
+inline int next_halfedge(int h) { return h - h % 3 + (h + 1) % 3; }
+inline int prev_halfedge(int h) { return h - h % 3 + (h + 2) % 3; }
+
+/// Value of MeshTopology::opposite for a half-edge whose edge has no second face.
+inline constexpr int kBoundary = -1;
+/// Value of MeshTopology::opposite for a half-edge whose edge is shared by more than two faces, or
+/// by two faces that traverse it in the same direction (inconsistent orientation).
+inline constexpr int kNonManifold = -2;
+
+/// One undirected edge and the half-edges that lie on it.
+struct Edge {
+  int v0, v1;      // v0 < v1
+  int first;       // offset into MeshTopology::edge_halfedges
+  int count;       // number of faces on the edge
+};
+
+struct MeshTopology {
+  std::vector<int> opposite;  // per half-edge: the opposite half-edge, kBoundary or kNonManifold
+  std::vector<int> halfedge_edge;  // per half-edge: index into `edges`
+  std::vector<Edge> edges;
+  std::vector<int> edge_halfedges;           // grouped by edge, see Edge::first / count
+  std::vector<int> vertex_face_offsets;      // CSR, size V + 1
+  std::vector<int> vertex_faces;             // faces around each vertex, ascending
+  std::vector<int> nonmanifold_vertices;     // vertices whose faces form more than one fan
+  int nonmanifold_edge_count = 0;            // edges with more than two faces
+  int misoriented_edge_count = 0;            // edges whose two faces disagree in orientation
+  int component_count = 0;                   // connected components of faces (through edges)
+  std::vector<int> face_component;           // per face, in [0, component_count)
+
+  int halfedge_source(const Mesh& mesh, int h) const { return mesh.triangles[h / 3][h % 3]; }
+  int halfedge_target(const Mesh& mesh, int h) const {
+    return mesh.triangles[h / 3][(h % 3 + 1) % 3];
+  }
+  int faces_of_vertex_begin(int v) const { return vertex_face_offsets[v]; }
+  int faces_of_vertex_end(int v) const { return vertex_face_offsets[v + 1]; }
+};
+
+/// Builds the adjacency. Precondition: validate_mesh(mesh) passes.
+MeshTopology build_topology(const Mesh& mesh);
+
+}  // namespace rangefill
