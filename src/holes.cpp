@@ -62,14 +62,15 @@ HoleSet find_holes(const Mesh& mesh, const MeshTopology& topology) {
     holes.loops.push_back(std::move(loop));
   }
 
-  // The longest loop of each component is its outer border (ties: the lower id).
+  // Mark the longest loop of each component (ties: the lower id); on an open scan it is the outer
+  // border.
   std::vector<int> longest(topology.component_count, -1);
   for (const BoundaryLoop& loop : holes.loops) {
     int& best = longest[loop.component];
     if (best < 0 || loop.perimeter > holes.loops[best].perimeter) best = loop.id;
   }
   for (int id : longest) {
-    if (id >= 0) holes.loops[id].is_outer_border = true;
+    if (id >= 0) holes.loops[id].longest_in_component = true;
   }
   return holes;
 }

@@ -30,10 +30,18 @@ MeshFormat format_from_extension(const fs::path& path) {
 ReadResult parse_mesh(std::string_view bytes, MeshFormat format, const std::string& name) {
   ReadResult result;
   switch (format) {
-    case MeshFormat::ply: result = detail::parse_ply(bytes, name); break;
-    case MeshFormat::obj: result = detail::parse_obj(bytes, name); break;
-    case MeshFormat::off: result = detail::parse_off(bytes, name); break;
-    case MeshFormat::stl: result = detail::parse_stl(bytes, name); break;
+    case MeshFormat::ply:
+      result = detail::parse_ply(bytes, name);
+      break;
+    case MeshFormat::obj:
+      result = detail::parse_obj(bytes, name);
+      break;
+    case MeshFormat::off:
+      result = detail::parse_off(bytes, name);
+      break;
+    case MeshFormat::stl:
+      result = detail::parse_stl(bytes, name);
+      break;
   }
   validate_mesh(result.mesh, name);
   return result;
@@ -53,10 +61,14 @@ ReadResult read_mesh(const fs::path& path) {
 
 std::string serialize_mesh(const Mesh& mesh, MeshFormat format, const WriteOptions& options) {
   switch (format) {
-    case MeshFormat::ply: return detail::serialize_ply(mesh, options);
-    case MeshFormat::obj: return detail::serialize_obj(mesh);
-    case MeshFormat::off: return detail::serialize_off(mesh);
-    case MeshFormat::stl: return detail::serialize_stl(mesh, options);
+    case MeshFormat::ply:
+      return detail::serialize_ply(mesh, options);
+    case MeshFormat::obj:
+      return detail::serialize_obj(mesh);
+    case MeshFormat::off:
+      return detail::serialize_off(mesh);
+    case MeshFormat::stl:
+      return detail::serialize_stl(mesh, options);
   }
   return {};
 }
@@ -101,7 +113,9 @@ void write_mesh(const Mesh& mesh, const fs::path& path, const WriteOptions& opti
 
 namespace detail {
 
-void fail(const std::string& name, const std::string& what) { throw InvalidInput(name + ": " + what); }
+void fail(const std::string& name, const std::string& what) {
+  throw InvalidInput(name + ": " + what);
+}
 
 int FaceBuilder::add(const std::vector<long long>& polygon, long long file_face) {
   const std::string face = "face " + std::to_string(file_face);
@@ -144,7 +158,9 @@ void append_number(std::string& out, double value, ScalarType type) {
     case ScalarType::float32:
       end = std::to_chars(buffer, buffer + sizeof buffer, static_cast<float>(value));
       break;
-    case ScalarType::float64: end = std::to_chars(buffer, buffer + sizeof buffer, value); break;
+    case ScalarType::float64:
+      end = std::to_chars(buffer, buffer + sizeof buffer, value);
+      break;
     default:
       end = std::to_chars(buffer, buffer + sizeof buffer, static_cast<long long>(value));
       break;

@@ -30,7 +30,8 @@ std::string serialize_stl(const Mesh& mesh, const WriteOptions& options);
 class FaceBuilder {
  public:
   FaceBuilder(ReadResult& result, const std::string& name) : result_(result), name_(name) {}
-  /// Adds polygon number `file_face` (as the file counts faces); returns how many triangles it made.
+  /// Adds polygon number `file_face` (as the file counts faces); returns how many triangles it
+  /// made.
   int add(const std::vector<long long>& polygon, long long file_face);
   /// Appends the warning about triangulated polygons and fills face provenance.
   void finish();
@@ -45,7 +46,8 @@ class FaceBuilder {
 /// Shortest decimal text that reads back as the same value of `type`.
 void append_number(std::string& out, double value, ScalarType type);
 
-/// Reads a number with std::from_chars (locale-independent); false if `text` is not one whole number.
+/// Reads a number with std::from_chars (locale-independent); false if `text` is not one whole
+/// number.
 template <typename T>
 bool parse_number(std::string_view text, T& value) {
   if (!text.empty() && text.front() == '+') text.remove_prefix(1);

@@ -4,8 +4,6 @@
 #include <limits>
 #include <numeric>
 
-#include <Eigen/Geometry>
-
 #include "rangefill/errors.h"
 #include "rangefill/topology.h"
 
@@ -92,7 +90,10 @@ void validate_mesh(const Mesh& mesh, const std::string& source) {
 }
 
 double mean_edge_length(const Mesh& mesh) {
-  const MeshTopology topology = build_topology(mesh);
+  return mean_edge_length(mesh, build_topology(mesh));
+}
+
+double mean_edge_length(const Mesh& mesh, const MeshTopology& topology) {
   if (topology.edges.empty()) return 0.0;
   double sum = 0.0;
   for (const Edge& edge : topology.edges) {
@@ -195,7 +196,8 @@ std::vector<Triangle> triangulate_polygon(const std::vector<Vec3>& positions,
     }
     if (!clipped) break;
   }
-  // What remains (a triangle, or a degenerate/self-intersecting rest) is fanned from its first corner.
+  // What remains (a triangle, or a degenerate/self-intersecting rest) is fanned from its first
+  // corner.
   for (size_t i = 1; i + 1 < ring.size(); ++i) {
     triangles.push_back({polygon[ring[0]], polygon[ring[i]], polygon[ring[i + 1]]});
   }

@@ -127,7 +127,8 @@ void find_nonmanifold_vertices(const Mesh& mesh, MeshTopology& topology) {
           const Edge& edge = topology.edges[topology.halfedge_edge[at_v]];
           if (edge.count != 2) continue;
           const int h0 = topology.edge_halfedges[edge.first];
-          const int neighbour = halfedge_face(h0 == at_v ? topology.edge_halfedges[edge.first + 1] : h0);
+          const int neighbour =
+              halfedge_face(h0 == at_v ? topology.edge_halfedges[edge.first + 1] : h0);
           const auto other = std::lower_bound(topology.vertex_faces.begin() + begin,
                                               topology.vertex_faces.begin() + end, neighbour);
           const int a = find_root(parent, i - begin);

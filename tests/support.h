@@ -18,7 +18,8 @@ std::filesystem::path temporary_directory(const std::string& stem);
 /// The unit cube [0,1]³ as 12 outward-facing triangles on 8 vertices.
 Mesh make_cube();
 
-/// A flat n×n grid of quads (2 triangles each) in z = 0 with spacing 1, counter-clockwise seen from +z.
+/// A flat n×n grid of quads (2 triangles each) in z = 0 with spacing 1, counter-clockwise seen from
+/// +z.
 Mesh make_grid(int n);
 
 }  // namespace rangefill::testing

@@ -19,7 +19,7 @@ struct BoundaryLoop {
   double perimeter = 0;       // sum of edge lengths
   double area = 0;            // |vector area| = |½ Σ p_k × p_k+1|: exact for a planar loop
   int component = 0;          // component of the faces bordering it
-  bool is_outer_border = false;  // the longest loop (by perimeter) of its component
+  bool longest_in_component = false;  // the longest loop (by perimeter) of its component
 };
 
 struct HoleSet {

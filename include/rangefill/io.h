@@ -28,7 +28,8 @@ struct ReadResult {
 /// header declares.
 ReadResult read_mesh(const std::filesystem::path& path);
 
-/// Parses a mesh from memory; `name` is used in messages. What read_mesh does after loading the file.
+/// Parses a mesh from memory; `name` is used in messages. What read_mesh does after loading the
+/// file.
 ReadResult parse_mesh(std::string_view bytes, MeshFormat format, const std::string& name);
 
 enum class Encoding { binary, ascii };
@@ -42,7 +43,8 @@ struct WriteOptions {
 /// Writes atomically: to a temporary file beside `path`, then renamed over it, so that a failure
 /// leaves no partial file. Positions, normals and colours are written in mesh.storage types
 /// (ASCII with enough digits to read back the same value). Throws IoError.
-void write_mesh(const Mesh& mesh, const std::filesystem::path& path, const WriteOptions& options = {});
+void write_mesh(const Mesh& mesh, const std::filesystem::path& path,
+                const WriteOptions& options = {});
 
 /// The bytes write_mesh would write.
 std::string serialize_mesh(const Mesh& mesh, MeshFormat format, const WriteOptions& options = {});

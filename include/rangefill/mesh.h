@@ -7,19 +7,31 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace rangefill {
 
 using Vec3 = Eigen::Vector3d;
 using Triangle = std::array<int, 3>;
-/// Per-vertex colour, RGB in [0, 1]. 8-bit colours c are stored as c / 255 and written back exactly.
+/// Per-vertex colour, RGB in [0, 1]. 8-bit colours c are stored as c / 255 and written back
+/// exactly.
 using Rgb = Eigen::Vector3f;
 
 /// Provenance value of an element that came from the input file.
 inline constexpr int kOriginal = -1;
 
-/// Scalar type of a property in a file; kept so that a mesh is written back in the types it was read.
-enum class ScalarType : std::uint8_t { int8, uint8, int16, uint16, int32, uint32, float32, float64 };
+/// Scalar type of a property in a file; kept so that a mesh is written back in the types it was
+/// read.
+enum class ScalarType : std::uint8_t {
+  int8,
+  uint8,
+  int16,
+  uint16,
+  int32,
+  uint32,
+  float32,
+  float64
+};
 
 /// A per-element scalar property of the input file that rangefill does not interpret (alpha,
 /// confidence, quality, ...). It is carried through unchanged; generated elements get 0.
@@ -74,7 +86,11 @@ Mesh make_mesh(std::vector<Vec3> positions, std::vector<Triangle> triangles);
 /// above or has a non-finite coordinate. Linear time, no allocation.
 void validate_mesh(const Mesh& mesh, const std::string& source);
 
-/// Mean length of the unique (undirected) edges, d_m in the Pérez paper. 0 for a mesh without faces.
+struct MeshTopology;
+
+/// Mean length of the unique (undirected) edges, d_m in the Pérez paper. 0 for a mesh without
+/// faces.
+double mean_edge_length(const Mesh& mesh, const MeshTopology& topology);
 double mean_edge_length(const Mesh& mesh);
 
 /// Smallest and largest corner of the axis-aligned bounding box of the vertices.

@@ -9,9 +9,15 @@
 namespace rangefill {
 
 /// Half-edge h = 3·f + i of face f runs from corner i to corner (i + 1) % 3 (face orientation).
-inline int halfedge_face(int h) { return h / 3; }
-inline int next_halfedge(int h) { return h - h % 3 + (h + 1) % 3; }
-inline int prev_halfedge(int h) { return h - h % 3 + (h + 2) % 3; }
+inline int halfedge_face(int h) {
+  return h / 3;
+}
+inline int next_halfedge(int h) {
+  return h - h % 3 + (h + 1) % 3;
+}
+inline int prev_halfedge(int h) {
+  return h - h % 3 + (h + 2) % 3;
+}
 
 /// Value of MeshTopology::opposite for a half-edge whose edge has no second face.
 inline constexpr int kBoundary = -1;
@@ -21,23 +27,23 @@ inline constexpr int kNonManifold = -2;
 
 /// One undirected edge and the half-edges that lie on it.
 struct Edge {
-  int v0, v1;      // v0 < v1
-  int first;       // offset into MeshTopology::edge_halfedges
-  int count;       // number of faces on the edge
+  int v0, v1;  // v0 < v1
+  int first;   // offset into MeshTopology::edge_halfedges
+  int count;   // number of faces on the edge
 };
 
 struct MeshTopology {
   std::vector<int> opposite;  // per half-edge: the opposite half-edge, kBoundary or kNonManifold
   std::vector<int> halfedge_edge;  // per half-edge: index into `edges`
   std::vector<Edge> edges;
-  std::vector<int> edge_halfedges;           // grouped by edge, see Edge::first / count
-  std::vector<int> vertex_face_offsets;      // CSR, size V + 1
-  std::vector<int> vertex_faces;             // faces around each vertex, ascending
-  std::vector<int> nonmanifold_vertices;     // vertices whose faces form more than one fan
-  int nonmanifold_edge_count = 0;            // edges with more than two faces
-  int misoriented_edge_count = 0;            // edges whose two faces disagree in orientation
-  int component_count = 0;                   // connected components of faces (through edges)
-  std::vector<int> face_component;           // per face, in [0, component_count)
+  std::vector<int> edge_halfedges;        // grouped by edge, see Edge::first / count
+  std::vector<int> vertex_face_offsets;   // CSR, size V + 1
+  std::vector<int> vertex_faces;          // faces around each vertex, ascending
+  std::vector<int> nonmanifold_vertices;  // vertices whose faces form more than one fan
+  int nonmanifold_edge_count = 0;         // edges with more than two faces
+  int misoriented_edge_count = 0;         // edges whose two faces disagree in orientation
+  int component_count = 0;                // connected components of faces (through edges)
+  std::vector<int> face_component;        // per face, in [0, component_count)
 
   int halfedge_source(const Mesh& mesh, int h) const { return mesh.triangles[h / 3][h % 3]; }
   int halfedge_target(const Mesh& mesh, int h) const {

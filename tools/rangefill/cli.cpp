@@ -1,0 +1,26 @@
+#include "cli.h"
+
+#include <unistd.h>
+
+#include <iostream>
+
+namespace rangefill::cli {
+
+Mesh load_mesh(const std::string& path) {
+  ReadResult result = read_mesh(path);
+  for (const std::string& warning : result.warnings) std::cerr << "warning: " << warning << "\n";
+  return std::move(result.mesh);
+}
+
+bool stdout_is_terminal() {
+  return ::isatty(STDOUT_FILENO) == 1;
+}
+bool stderr_is_terminal() {
+  return ::isatty(STDERR_FILENO) == 1;
+}
+
+void print_json(const nlohmann::json& value) {
+  std::cout << value.dump(2) << "\n";
+}
+
+}  // namespace rangefill::cli

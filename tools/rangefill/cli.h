@@ -1,0 +1,33 @@
+// Shared plumbing of the rangefill sub-commands: exit codes, messages, loading, JSON output.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "rangefill/io.h"
+
+namespace rangefill::cli {
+
+enum ExitCode { kOk = 0, kUsage = 2, kBadInput = 3, kFailure = 4 };
+
+/// What a sub-command does once its arguments are parsed; returns the exit code.
+using Runner = std::function<int()>;
+
+/// Each sub-command registers itself on `app` and, when chosen, stores its work in `runner`.
+void add_info_command(CLI::App& app, Runner& runner);
+void add_holes_command(CLI::App& app, Runner& runner);
+
+/// Reads a mesh, printing its warnings to stderr as "warning: ..." lines.
+Mesh load_mesh(const std::string& path);
+
+/// True when stdout / stderr is a terminal (progress and colour only then).
+bool stdout_is_terminal();
+bool stderr_is_terminal();
+
+/// Prints JSON to stdout, two-space indented.
+void print_json(const nlohmann::json& value);
+
+}  // namespace rangefill::cli

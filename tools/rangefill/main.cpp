@@ -1,0 +1,40 @@
+// rangefill: one binary, one sub-command per job. Exit codes: 0 ok, 2 usage error, 3 unreadable or
+// invalid input, 4 processing failure. Errors are one line on stderr.
+#include <iostream>
+
+#include "cli.h"
+#include "rangefill/errors.h"
+
+int main(int argc, char** argv) {
+  using namespace rangefill;
+  CLI::App app{"rangefill: fill the holes of 3D scans by range-image inpainting", "rangefill"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "rangefill 0.1.0");
+  cli::Runner runner;
+  cli::add_info_command(app, runner);
+  cli::add_holes_command(app, runner);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    if (error.get_exit_code() == 0) return app.exit(error);  // --help, --version
+    std::cerr << "rangefill: " << error.what() << " (see rangefill --help)\n";
+    return cli::kUsage;
+  }
+
+  try {
+    return runner();
+  } catch (const InvalidInput& error) {
+    std::cerr << "rangefill: " << error.what() << "\n";
+    return cli::kBadInput;
+  } catch (const IoError& error) {
+    std::cerr << "rangefill: " << error.what() << "\n";
+    return cli::kBadInput;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "rangefill: out of memory\n";
+    return cli::kFailure;
+  } catch (const std::exception& error) {
+    std::cerr << "rangefill: " << error.what() << "\n";
+    return cli::kFailure;
+  }
+}
