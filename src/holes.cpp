@@ -1,21 +1,25 @@
 #include "rangefill/holes.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace rangefill {
 
 namespace {
 
-// The boundary half-edge that follows boundary half-edge `h` (which ends at vertex b) on its loop:
-// rotate around b through the faces of h's fan until a boundary half-edge leaves b. Returns -1 when
-// the fan is cut by a non-manifold or misoriented edge.
-int next_in_fan(const MeshTopology& topology, int h) {
-  int out = next_halfedge(h);  // leaves b inside the face of h
-  while (topology.opposite[out] >= 0) {
-    out = next_halfedge(topology.opposite[out]);
-    if (out == next_halfedge(h)) return -1;  // went all the way round: cannot happen on a boundary
+// Angle of `direction` from `reference`, counter-clockwise about `normal`, in [0, 2π).
+double ccw_angle(const Vec3& reference, const Vec3& direction, const Vec3& normal) {
+  const double angle = std::atan2(normal.dot(reference.cross(direction)), reference.dot(direction));
+  return angle < 0 ? angle + 2 * M_PI : angle;
+}
+
+// Area-weighted normal of the faces around vertex v.
+Vec3 vertex_normal(const Mesh& mesh, const MeshTopology& topology, int v) {
+  Vec3 normal = Vec3::Zero();
+  for (int i = topology.faces_of_vertex_begin(v); i < topology.faces_of_vertex_end(v); ++i) {
+    normal += triangle_cross(mesh, topology.vertex_faces[i]);
   }
-  return topology.opposite[out] == kBoundary ? out : -1;
+  return normal;
 }
 
 }  // namespace
@@ -32,6 +36,53 @@ HoleSet find_holes(const Mesh& mesh, const MeshTopology& topology) {
     if (boundary_degree[v] > 1) holes.pinched_vertices.push_back(v);
   }
 
+  // Boundary half-edges leaving each vertex (CSR).
+  std::vector<int> out_offsets(mesh.vertex_count() + 1, 0);
+  for (int v = 0; v < mesh.vertex_count(); ++v)
+    out_offsets[v + 1] = out_offsets[v] + boundary_degree[v];
+  std::vector<int> out_halfedges(out_offsets.back());
+  {
+    std::vector<int> cursor(out_offsets.begin(), out_offsets.end() - 1);
+    for (int h = 0; h < halfedge_count; ++h) {
+      if (topology.opposite[h] == kBoundary)
+        out_halfedges[cursor[topology.halfedge_source(mesh, h)]++] = h;
+    }
+  }
+
+  // The boundary half-edge that continues the loop after h = a→b. Where several leave b (loops
+  // touch at b), the hole on the right of h is the angular gap from b→a counter-clockwise (about
+  // the vertex normal) up to the next fan of faces of the same component, whose first edge is the
+  // one to take.
+  auto next_on_loop = [&](int h, int start) {
+    const int a = topology.halfedge_source(mesh, h), b = topology.halfedge_target(mesh, h);
+    // A loop stays within the component of its faces.
+    const int component = topology.face_component[halfedge_face(h)];
+    auto available = [&](int candidate) {
+      return (!visited[candidate] || candidate == start) &&
+             topology.face_component[halfedge_face(candidate)] == component;
+    };
+    if (boundary_degree[b] == 1) {
+      const int only = out_halfedges[out_offsets[b]];
+      return available(only) ? only : -1;
+    }
+    const Vec3 reference = mesh.positions[a] - mesh.positions[b];
+    const Vec3 normal = vertex_normal(mesh, topology, b);
+    int best = -1;
+    double best_angle = 0;
+    for (int i = out_offsets[b]; i < out_offsets[b + 1]; ++i) {
+      const int candidate = out_halfedges[i];
+      if (!available(candidate)) continue;
+      const Vec3 direction =
+          mesh.positions[topology.halfedge_target(mesh, candidate)] - mesh.positions[b];
+      const double angle = ccw_angle(reference, direction, normal);
+      if (best < 0 || angle < best_angle) {
+        best = candidate;
+        best_angle = angle;
+      }
+    }
+    return best;
+  };
+
   for (int start = 0; start < halfedge_count; ++start) {
     if (topology.opposite[start] != kBoundary || visited[start]) continue;
     std::vector<int> loop_halfedges;
@@ -40,7 +91,7 @@ HoleSet find_holes(const Mesh& mesh, const MeshTopology& topology) {
     while (h >= 0 && !visited[h]) {
       visited[h] = 1;
       loop_halfedges.push_back(h);
-      h = next_in_fan(topology, h);
+      h = next_on_loop(h, start);
       if (h == start) closed = true;
     }
     if (!closed) {

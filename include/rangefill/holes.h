@@ -30,9 +30,10 @@ struct HoleSet {
   int open_boundary_edges = 0;
 };
 
-/// Traces every boundary loop in O(boundary edges · valence) once the topology exists, walking the
-/// fan of faces at each loop vertex so that loops touching at a vertex are kept apart. Edges shared
-/// by more than two faces are not boundary edges and are left to MeshTopology's counts.
+/// Traces every boundary loop in O(boundary edges) once the topology exists. Where loops touch at a
+/// vertex, each continues into the angular gap on its right (about the vertex normal) and stays in
+/// its own component, so touching loops are kept apart. Edges shared by more than two faces are not
+/// boundary edges and are left to MeshTopology's counts.
 HoleSet find_holes(const Mesh& mesh, const MeshTopology& topology);
 
 }  // namespace rangefill
