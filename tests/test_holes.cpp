@@ -15,7 +15,9 @@ namespace {
 using testing::make_cube;
 using testing::make_grid;
 
-HoleSet holes_of(const Mesh& mesh) { return find_holes(mesh, build_topology(mesh)); }
+HoleSet holes_of(const Mesh& mesh) {
+  return find_holes(mesh, build_topology(mesh));
+}
 
 // Every consecutive pair of a loop must be a half-edge of some face (the surface on its left).
 void expect_loop_follows_faces(const Mesh& mesh, const BoundaryLoop& loop) {
@@ -109,8 +111,8 @@ TEST(FindHoles, NonManifoldFanIsReportedNotCrashedOn) {
 }
 
 TEST(FindHoles, BowtieGivesTwoLoopsAndAPinchedVertex) {
-  const Mesh bowtie =
-      make_mesh({{0, 0, 0}, {-1, -1, 0}, {-1, 1, 0}, {1, 1, 0}, {1, -1, 0}}, {{0, 2, 1}, {0, 4, 3}});
+  const Mesh bowtie = make_mesh({{0, 0, 0}, {-1, -1, 0}, {-1, 1, 0}, {1, 1, 0}, {1, -1, 0}},
+                                {{0, 2, 1}, {0, 4, 3}});
   const MeshTopology topology = build_topology(bowtie);
   EXPECT_EQ(topology.nonmanifold_vertices, (std::vector<int>{0}));
   EXPECT_EQ(topology.component_count, 2);
@@ -143,7 +145,8 @@ TEST(FindHoles, HoleTouchingTheBorderAtAVertexStaysItsOwnLoop) {
 TEST(Topology, MisorientedEdgeIsCounted) {
   const Mesh mesh = make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, {{0, 1, 2}, {1, 3, 2}});
   EXPECT_EQ(build_topology(mesh).misoriented_edge_count, 0);
-  const Mesh flipped = make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, {{0, 1, 2}, {1, 2, 3}});
+  const Mesh flipped =
+      make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, {{0, 1, 2}, {1, 2, 3}});
   const MeshTopology topology = build_topology(flipped);
   EXPECT_EQ(topology.misoriented_edge_count, 1);
   EXPECT_TRUE(topology.nonmanifold_vertices.empty());
@@ -163,7 +166,8 @@ std::map<std::string, std::pair<std::vector<int>, double>> read_stats(
     if (cells.size() < 12) continue;
     std::vector<int> loops;
     std::stringstream lengths(cells[11]);
-    for (std::string length; std::getline(lengths, length, ',');) loops.push_back(std::stoi(length));
+    for (std::string length; std::getline(lengths, length, ',');)
+      loops.push_back(std::stoi(length));
     stats[cells[0]] = {loops, std::stod(cells[5])};
   }
   return stats;

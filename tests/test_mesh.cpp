@@ -14,7 +14,8 @@ namespace {
 double total_area(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles) {
   double area = 0;
   for (const Triangle& t : triangles) {
-    area += 0.5 * (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]).norm();
+    area +=
+        0.5 * (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]).norm();
   }
   return area;
 }
@@ -68,8 +69,8 @@ TEST(TriangulatePolygon, ConcavePolygonKeepsItsArea) {
   const Eigen::Matrix3d tilt =
       Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
   std::vector<Vec3> positions;
-  for (const auto& [x, y] : std::vector<std::pair<double, double>>{
-           {0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}) {
+  for (const auto& [x, y] :
+       std::vector<std::pair<double, double>>{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}) {
     positions.push_back(tilt * Vec3(x, y, 0));
   }
   const std::vector<int> polygon = {3, 4, 5, 0, 1, 2};  // starts at the reflex corner
@@ -79,8 +80,9 @@ TEST(TriangulatePolygon, ConcavePolygonKeepsItsArea) {
   // Every triangle keeps the polygon's orientation.
   const Vec3 normal = tilt * Vec3::UnitZ();
   for (const Triangle& t : triangles) {
-    EXPECT_GT((positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]).dot(normal),
-              0);
+    EXPECT_GT(
+        (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]).dot(normal),
+        0);
   }
 }
 

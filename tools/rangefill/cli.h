@@ -11,7 +11,9 @@
 
 namespace rangefill::cli {
 
-enum ExitCode { kOk = 0, kUsage = 2, kBadInput = 3, kFailure = 4 };
+/// 0 ok, 2 usage error, 3 unreadable or invalid input, 4 processing failure, 5 partial result
+/// (output written, some holes left open).
+enum ExitCode { kOk = 0, kUsage = 2, kBadInput = 3, kFailure = 4, kPartial = 5 };
 
 /// What a sub-command does once its arguments are parsed; returns the exit code.
 using Runner = std::function<int()>;
@@ -19,6 +21,7 @@ using Runner = std::function<int()>;
 /// Each sub-command registers itself on `app` and, when chosen, stores its work in `runner`.
 void add_info_command(CLI::App& app, Runner& runner);
 void add_holes_command(CLI::App& app, Runner& runner);
+void add_repair_command(CLI::App& app, Runner& runner);
 
 /// Reads a mesh, printing its warnings to stderr as "warning: ..." lines.
 Mesh load_mesh(const std::string& path);

@@ -1,5 +1,5 @@
 // rangefill: one binary, one sub-command per job. Exit codes: 0 ok, 2 usage error, 3 unreadable or
-// invalid input, 4 processing failure. Errors are one line on stderr.
+// invalid input, 4 processing failure, 5 partial repair. Errors are one line on stderr.
 #include <iostream>
 
 #include "cli.h"
@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   cli::Runner runner;
   cli::add_info_command(app, runner);
   cli::add_holes_command(app, runner);
+  cli::add_repair_command(app, runner);
 
   try {
     app.parse(argc, argv);

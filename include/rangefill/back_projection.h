@@ -1,0 +1,32 @@
+// From restored pixels back to 3D points (Pérez et al., Section VII, eq. 13).
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "rangefill/holes.h"
+#include "rangefill/mesh.h"
+#include "rangefill/range_image.h"
+
+namespace rangefill {
+
+/// The restored pixels of one hole as points, in world and frame coordinates.
+struct Patch {
+  std::vector<Vec3> points;       // world coordinates
+  std::vector<cv::Point> pixels;  // (column, row) of each point
+  cv::Mat index;                  // CV_32S, per pixel: index into `points`, or -1
+};
+
+struct BackProjectionOptions {
+  double boundary_clearance =
+      0.5;  // points closer than this many q to the hole boundary are dropped
+};
+
+/// Maps every hole pixel of `image` whose restored value in `restored` (CV_32F) is finite through
+/// the inverse normalisation and the inverse plane transform (eq. 13) to a world point, keeping
+/// those at least boundary_clearance·q away from the projected hole boundary, in row-major order.
+Patch back_project(const Mesh& mesh, const BoundaryLoop& hole, const RangeImage& image,
+                   const cv::Mat& restored, const BackProjectionOptions& options = {});
+
+}  // namespace rangefill

@@ -1,0 +1,40 @@
+// Inpainting back-ends: restore the masked pixels of a float image from the others. They know
+// nothing of meshes, which is what lets the same back-ends serve mesh repair and depth maps.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace rangefill {
+
+struct InpainterOptions {
+  double radius = 5;  // neighbourhood radius in pixels (telea, ns)
+};
+
+/// A back-end. inpaint(depth, mask, out): `depth` is CV_32FC1; `mask` is CV_8UC1 of the same size,
+/// non-zero at the pixels to restore; every other pixel of `depth` is taken as valid data. `out`
+/// receives a CV_32FC1 image equal to `depth` outside the mask. Implementations are stateless once
+/// made and may be called from several threads at once.
+class Inpainter {
+ public:
+  virtual ~Inpainter() = default;
+  virtual std::string name() const = 0;
+  virtual void inpaint(cv::InputArray depth, cv::InputArray mask, cv::OutputArray out) const = 0;
+};
+
+/// The back-ends by name ("telea", "ns", ...). Throws InvalidInput for an unknown name, listing
+/// the known ones.
+std::unique_ptr<Inpainter> make_inpainter(std::string_view name,
+                                          const InpainterOptions& options = {});
+
+/// The names make_inpainter accepts, in a stable order.
+std::vector<std::string> inpainter_names();
+
+/// Checks the inpaint() preconditions above; throws InvalidInput naming `who` otherwise.
+void check_inpaint_arguments(cv::InputArray depth, cv::InputArray mask, const std::string& who);
+
+}  // namespace rangefill

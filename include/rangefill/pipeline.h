@@ -1,0 +1,95 @@
+// The repair pipeline (Pérez et al., Sections IV–IX): every hole becomes a range image, is restored
+// by an inpainter, mapped back to 3D, stitched and merged; then holes are looked for again.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "rangefill/back_projection.h"
+#include "rangefill/holes.h"
+#include "rangefill/inpainter.h"
+#include "rangefill/mesh.h"
+#include "rangefill/projection.h"
+#include "rangefill/range_image.h"
+#include "rangefill/stitch.h"
+#include "rangefill/zone.h"
+
+namespace rangefill {
+
+/// What happened to one hole.
+struct HoleReport {
+  int id = 0;    // unique over the run; the provenance of what it generated. In pass 0 it is the
+                 // loop's id in the input (as `rangefill holes` lists them)
+  int pass = 0;  // 0 for the input's holes, 1+ for holes found again after merging
+  int loop = 0;  // id of the loop in its pass's HoleSet
+  int boundary_vertices = 0;
+  double area = 0;
+  int rings = 0;  // ν
+  int zone_faces = 0;
+  cv::Size image_size;
+  int masked_pixels = 0;
+  int gap_pixels = 0;
+  int new_vertices = 0;
+  int new_faces = 0;
+  double seconds = 0;             // whole hole
+  double inpainting_seconds = 0;  // of which the back-end
+  std::vector<int> other_holes;   // other loops the zone reached
+  bool filled = false;
+  std::string failure;  // why not, when not filled
+};
+
+/// Everything a person needs to look at one hole's images (see RepairOptions::on_images).
+struct HoleImages {
+  int id = 0;  // HoleReport::id
+  const RangeImage& image;
+  const cv::Mat& restored;
+};
+
+struct RepairOptions {
+  std::string inpainter = "ns";
+  InpainterOptions inpainting;
+  ZoneOptions zone;
+  ProjectionOptions projection;
+  RangeImageOptions image;
+  BackProjectionOptions back_projection;
+  std::vector<int> holes;    // ids of the input's loops to fill; empty = every loop
+  int max_hole_edges = 0;    // loops with more boundary edges are left open; 0 = no limit
+  double max_hole_area = 0;  // loops with a larger area are left open; 0 = no limit
+  int passes = 3;            // rounds of detect–fill–merge (Section IX)
+  int threads = 1;           // holes of a pass are independent; the result does not depend on it
+  std::function<void(const HoleReport&)> on_hole;    // after each hole (any thread, serialised)
+  std::function<void(const HoleImages&)> on_images;  // after each inpainting (serialised)
+};
+
+struct RepairResult {
+  Mesh mesh;
+  std::vector<HoleReport> holes;
+  /// Eq. 17: row 0 counts the input's vertices, edges and faces; row i + 1 those added by the i-th
+  /// filled hole, in the order the fills were merged.
+  std::vector<std::array<long long, 3>> restoration_matrix;
+  int holes_left = 0;  // boundary loops of the result that were asked to be filled
+};
+
+/// Fills one hole of `mesh` (Sections V–VIII). Reads the mesh only; safe to call concurrently.
+/// `report` receives the figures of the stages it reached. Throws ProcessingError when the hole
+/// cannot be filled (complex boundary, empty image, stitching refused).
+Fill fill_hole(const Mesh& mesh, const MeshTopology& topology, const HoleSet& holes,
+               const BoundaryLoop& hole, const std::vector<Vec3>& vertex_normals, double mean_edge,
+               const Inpainter& inpainter, const RepairOptions& options, HoleReport& report);
+
+/// Appends a fill to the mesh with provenance `hole_id` (Section IX, eq. 16) and returns its row
+/// of the restoration matrix (vertices, edges, faces added).
+std::array<long long, 3> merge_fill(Mesh& mesh, const Fill& fill, int hole_id);
+
+/// Repairs every selected hole, in passes: all holes of a pass are filled against the same mesh
+/// (in parallel when options.threads > 1) and merged in hole order, so the result is the same at
+/// any thread count; then holes are detected again and the next pass fills those that are new.
+/// Original vertices and faces keep their indices and values. A hole that fails is reported and
+/// left open. d_m is the input's mean edge length throughout.
+RepairResult repair(const Mesh& mesh, const RepairOptions& options = {});
+
+}  // namespace rangefill

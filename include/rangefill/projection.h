@@ -1,0 +1,59 @@
+// The projection plane of a hole (Pérez et al., Section VI, Fig. 8): the orientation that maximises
+// the projected area of the zone, with a hole boundary that projects without self-intersection.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rangefill/holes.h"
+#include "rangefill/mesh.h"
+#include "rangefill/zone.h"
+
+namespace rangefill {
+
+/// A rigid frame Σ' attached to a projection plane: local z is the viewing direction (towards the
+/// viewer, so the zone's faces are seen from their front), local x, y span the image plane.
+struct Frame {
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // rows: the local axes in world space
+  Vec3 origin = Vec3::Zero();
+
+  Vec3 to_local(const Vec3& p) const { return rotation * (p - origin); }
+  Vec3 to_world(const Vec3& q) const { return rotation.transpose() * q + origin; }
+  Vec3 normal() const { return rotation.row(2).transpose(); }
+};
+
+struct ProjectionOptions {
+  int search_directions = 256;        // directions sampled on the cap around the start
+  double search_cap_degrees = 80;     // half-angle of that cap
+  int refinements = 3;                // each halves the cap around the best direction so far
+  double max_folded_fraction = 0.02;  // back-facing zone area allowed, relative to the zone area
+  int max_orientations = 64;          // candidates checked for a simple boundary before giving up
+};
+
+struct Projection {
+  Frame frame;
+  double projected_area = 0;   // Σ max(0, n·a_f) over the zone's faces (a_f: area vectors)
+  double folded_area = 0;      // Σ max(0, −n·a_f): zone area seen from behind
+  bool complex = false;        // no orientation projects the boundary without self-intersection
+  int orientations_tried = 0;  // candidates checked for a simple boundary, best first
+};
+
+/// Chooses the plane (Section VI, Fig. 8). Candidates: the area-weighted normal of the zone, the
+/// smallest principal axis of its vertices (PCA), and directions sampled on caps around the best
+/// of them, scored by projected area minus folded area (n·Σa_f − folded). The best candidate whose
+/// folded area is within `max_folded_fraction` and onto which the hole boundary projects as a
+/// simple polygon wins; if none does, the result is marked complex. In the frame, local x is the
+/// main axis of the projected zone (a tight image), the origin the centroid of the boundary.
+Projection best_projection(const Mesh& mesh, const Zone& zone, const BoundaryLoop& hole,
+                           const ProjectionOptions& options = {});
+
+/// True if the closed polygon (consecutive points joined, last to first) has no two non-adjacent
+/// edges that touch or cross and no repeated point.
+bool is_simple_polygon(const std::vector<Eigen::Vector2d>& polygon);
+
+/// The points of `hole` in the frame's image plane (local x, y).
+std::vector<Eigen::Vector2d> project_loop(const Mesh& mesh, const BoundaryLoop& hole,
+                                          const Frame& frame);
+
+}  // namespace rangefill

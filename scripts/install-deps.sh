@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Installs the Debian packages rangefill needs that are missing. Silent when nothing is missing.
+set -euo pipefail
+packages=(
+  build-essential cmake pkg-config
+  libeigen3-dev libopencv-dev libpcl-dev libceres-dev
+  libcgal-dev libgtest-dev libbenchmark-dev
+  nlohmann-json3-dev libcli11-dev libtinyobjloader-dev
+)
+missing=()
+for package in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" ||
+    missing+=("$package")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+echo "install-deps: installing ${missing[*]}"
+sudo=""
+[ "$(id -u)" -ne 0 ] && sudo="sudo"
+$sudo apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

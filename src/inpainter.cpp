@@ -1,0 +1,59 @@
+#include "rangefill/inpainter.h"
+
+#include <functional>
+
+#include <opencv2/photo.hpp>
+
+#include "../filters/opencv_inpaint.h"
+#include "rangefill/errors.h"
+
+namespace rangefill {
+
+namespace {
+
+struct Registration {
+  const char* name;
+  std::function<std::unique_ptr<Inpainter>(const InpainterOptions&)> make;
+};
+
+// Every back-end in filters/, by name.
+const std::vector<Registration>& registry() {
+  static const std::vector<Registration> backends = {
+      {"telea",
+       [](const InpainterOptions& o) {
+         return std::make_unique<OpenCvInpainter>(cv::INPAINT_TELEA, o.radius);
+       }},
+      {"ns",
+       [](const InpainterOptions& o) {
+         return std::make_unique<OpenCvInpainter>(cv::INPAINT_NS, o.radius);
+       }},
+  };
+  return backends;
+}
+
+}  // namespace
+
+std::vector<std::string> inpainter_names() {
+  std::vector<std::string> names;
+  for (const Registration& backend : registry()) names.emplace_back(backend.name);
+  return names;
+}
+
+std::unique_ptr<Inpainter> make_inpainter(std::string_view name, const InpainterOptions& options) {
+  for (const Registration& backend : registry()) {
+    if (name == backend.name) return backend.make(options);
+  }
+  std::string known;
+  for (const std::string& n : inpainter_names()) known += (known.empty() ? "" : ", ") + n;
+  throw InvalidInput("unknown inpainter '" + std::string(name) + "' (known: " + known + ")");
+}
+
+void check_inpaint_arguments(cv::InputArray depth, cv::InputArray mask, const std::string& who) {
+  if (depth.type() != CV_32FC1) throw InvalidInput(who + ": depth must be CV_32FC1");
+  if (mask.type() != CV_8UC1) throw InvalidInput(who + ": mask must be CV_8UC1");
+  if (depth.size() != mask.size()) {
+    throw InvalidInput(who + ": mask size differs from depth size");
+  }
+}
+
+}  // namespace rangefill

@@ -1,0 +1,192 @@
+#include "rangefill/projection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include <Eigen/Eigenvalues>
+
+namespace rangefill {
+
+namespace {
+
+using Vec2 = Eigen::Vector2d;
+
+double orient(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+}
+
+bool on_segment(const Vec2& a, const Vec2& b, const Vec2& p) {
+  return std::min(a.x(), b.x()) <= p.x() && p.x() <= std::max(a.x(), b.x()) &&
+         std::min(a.y(), b.y()) <= p.y() && p.y() <= std::max(a.y(), b.y());
+}
+
+// Closed segments ab and cd share a point.
+bool segments_touch(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  const double o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a),
+               o4 = orient(c, d, b);
+  if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) {
+    return true;
+  }
+  return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) ||
+         (o3 == 0 && on_segment(c, d, a)) || (o4 == 0 && on_segment(c, d, b));
+}
+
+struct Scored {
+  Vec3 direction;
+  double score;  // projected minus twice folded area, i.e. n·Σa − folded
+  double projected;
+  double folded;
+};
+
+Scored score_direction(const std::vector<Vec3>& area_vectors, const Vec3& n) {
+  Scored s{n, 0, 0, 0};
+  for (const Vec3& a : area_vectors) {
+    const double along = n.dot(a);
+    (along > 0 ? s.projected : s.folded) += std::abs(along);
+  }
+  s.score = s.projected - 2 * s.folded;
+  return s;
+}
+
+// `count` directions spread evenly (Fibonacci spiral) over the spherical cap of half-angle `cap`
+// around the unit vector `axis`.
+std::vector<Vec3> cap_directions(const Vec3& axis, double cap, int count) {
+  const Vec3 u = axis.unitOrthogonal();
+  const Vec3 v = axis.cross(u);
+  const double golden_angle = M_PI * (3 - std::sqrt(5.0));
+  std::vector<Vec3> directions;
+  for (int k = 0; k < count; ++k) {
+    const double z = 1 - (1 - std::cos(cap)) * (k + 0.5) / count;
+    const double r = std::sqrt(std::max(0.0, 1 - z * z));
+    const double phi = k * golden_angle;
+    directions.push_back((r * std::cos(phi) * u + r * std::sin(phi) * v + z * axis).normalized());
+  }
+  return directions;
+}
+
+// Local axes for viewing direction n: x along the main axis of the zone's projection.
+Eigen::Matrix3d frame_axes(const Mesh& mesh, const Zone& zone, const Vec3& n) {
+  const Vec3 u = n.unitOrthogonal();
+  const Vec3 v = n.cross(u);
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (int vertex : zone.vertices)
+    mean += Vec2(mesh.positions[vertex].dot(u), mesh.positions[vertex].dot(v));
+  mean /= std::max<size_t>(1, zone.vertices.size());
+  Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
+  for (int vertex : zone.vertices) {
+    const Vec2 d = Vec2(mesh.positions[vertex].dot(u), mesh.positions[vertex].dot(v)) - mean;
+    covariance += d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(covariance);
+  Vec2 main = solver.eigenvectors().col(1);
+  Vec3 x = (main.x() * u + main.y() * v).normalized();
+  int largest = 0;
+  x.cwiseAbs().maxCoeff(&largest);
+  if (x[largest] < 0) x = -x;  // a deterministic sign
+  Eigen::Matrix3d rotation;
+  rotation.row(0) = x.transpose();
+  rotation.row(1) = n.cross(x).transpose();
+  rotation.row(2) = n.transpose();
+  return rotation;
+}
+
+}  // namespace
+
+bool is_simple_polygon(const std::vector<Vec2>& polygon) {
+  const size_t n = polygon.size();
+  if (n < 3) return false;
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t j = i + 1; j < n; ++j) {
+      if (polygon[i] == polygon[j]) return false;
+    }
+  }
+  for (size_t i = 0; i < n; ++i) {
+    const Vec2 &a = polygon[i], &b = polygon[(i + 1) % n];
+    for (size_t j = i + 2; j < n; ++j) {
+      if (i == 0 && j == n - 1) continue;  // adjacent through the closing edge
+      if (segments_touch(a, b, polygon[j], polygon[(j + 1) % n])) return false;
+    }
+  }
+  return true;
+}
+
+std::vector<Vec2> project_loop(const Mesh& mesh, const BoundaryLoop& hole, const Frame& frame) {
+  std::vector<Vec2> points;
+  for (int v : hole.vertices) points.push_back(frame.to_local(mesh.positions[v]).head<2>());
+  return points;
+}
+
+Projection best_projection(const Mesh& mesh, const Zone& zone, const BoundaryLoop& hole,
+                           const ProjectionOptions& options) {
+  std::vector<Vec3> area_vectors;
+  Vec3 vector_area = Vec3::Zero();
+  for (int face : zone.faces) {
+    area_vectors.push_back(0.5 * triangle_cross(mesh, face));
+    vector_area += area_vectors.back();
+  }
+  // The hole's own vector area (the loop runs clockwise seen from the front, hence the minus).
+  Vec3 loop_area = Vec3::Zero();
+  for (size_t k = 0; k < hole.vertices.size(); ++k) {
+    loop_area += mesh.positions[hole.vertices[k]].cross(
+        mesh.positions[hole.vertices[(k + 1) % hole.vertices.size()]]);
+  }
+  loop_area *= -0.5;
+
+  std::vector<Vec3> starts;
+  for (const Vec3& candidate : {vector_area, loop_area}) {
+    if (candidate.norm() > 0) starts.push_back(candidate.normalized());
+  }
+  if (zone.vertices.size() >= 3) {  // PCA: the axis of least spread
+    Vec3 mean = Vec3::Zero();
+    for (int v : zone.vertices) mean += mesh.positions[v];
+    mean /= zone.vertices.size();
+    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+    for (int v : zone.vertices) {
+      const Vec3 d = mesh.positions[v] - mean;
+      covariance += d * d.transpose();
+    }
+    Vec3 axis = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors().col(0);
+    if (axis.dot(starts.empty() ? Vec3::UnitZ() : starts.front()) < 0) axis = -axis;
+    if (axis.allFinite() && axis.norm() > 0.5) starts.push_back(axis.normalized());
+  }
+  if (starts.empty()) starts.push_back(Vec3::UnitZ());
+
+  std::vector<Scored> candidates;
+  for (const Vec3& start : starts) candidates.push_back(score_direction(area_vectors, start));
+  auto better = [](const Scored& a, const Scored& b) { return a.score > b.score; };
+  Scored best = *std::max_element(candidates.begin(), candidates.end(),
+                                  [&](const Scored& a, const Scored& b) { return better(b, a); });
+  double cap = options.search_cap_degrees * M_PI / 180;
+  for (int round = 0; round <= options.refinements; ++round) {
+    for (const Vec3& direction : cap_directions(best.direction, cap, options.search_directions)) {
+      candidates.push_back(score_direction(area_vectors, direction));
+      if (better(candidates.back(), best)) best = candidates.back();
+    }
+    cap /= 2;
+  }
+  std::stable_sort(candidates.begin(), candidates.end(), better);
+
+  Projection projection;
+  const double zone_area =
+      std::accumulate(area_vectors.begin(), area_vectors.end(), 0.0,
+                      [](double sum, const Vec3& a) { return sum + a.norm(); });
+  for (const Scored& candidate : candidates) {
+    if (candidate.folded > options.max_folded_fraction * zone_area) continue;
+    if (projection.orientations_tried++ == options.max_orientations) break;
+    Frame frame;
+    frame.rotation = frame_axes(mesh, zone, candidate.direction);
+    for (int v : hole.vertices) frame.origin += mesh.positions[v];
+    frame.origin /= std::max<size_t>(1, hole.vertices.size());
+    if (!is_simple_polygon(project_loop(mesh, hole, frame))) continue;
+    projection.frame = frame;
+    projection.projected_area = candidate.projected;
+    projection.folded_area = candidate.folded;
+    return projection;
+  }
+  projection.complex = true;
+  projection.frame.rotation = frame_axes(mesh, zone, best.direction);
+  return projection;
+}
+
+}  // namespace rangefill

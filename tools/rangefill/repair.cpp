@@ -1,0 +1,211 @@
+// rangefill repair IN -o OUT: close the holes of a mesh by range-image inpainting.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "cli.h"
+#include "rangefill/errors.h"
+#include "rangefill/pipeline.h"
+
+namespace rangefill::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RepairCommand {
+  std::string input, output, report, debug_dir, holes = "all";
+  bool in_place = false, json = false, ascii = false;
+  RepairOptions options;
+};
+
+std::vector<int> parse_hole_ids(const std::string& text) {
+  std::vector<int> ids;
+  if (text == "all") return ids;
+  std::stringstream stream(text);
+  for (std::string item; std::getline(stream, item, ',');) {
+    try {
+      size_t used = 0;
+      ids.push_back(std::stoi(item, &used));
+      if (used != item.size() || ids.back() < 0) throw std::invalid_argument(item);
+    } catch (const std::exception&) {
+      throw InvalidInput("--holes: '" + item + "' is not a hole id (expected all or ID,ID,...)");
+    }
+  }
+  return ids;
+}
+
+// 16-bit PNGs of one hole's range image: depth (0 = unknown), mask, restored depth.
+void write_debug_images(const std::string& dir, const HoleImages& images) {
+  const std::string stem = dir + "/hole-" + std::to_string(images.id);
+  const cv::Mat known = images.image.labels != kHolePixel;
+  cv::Mat depth, restored;
+  images.image.depth.convertTo(depth, CV_16U, 65535.0);
+  depth.setTo(0, images.image.labels != kKnownPixel);
+  images.restored.convertTo(restored, CV_16U, 65535.0);
+  cv::imwrite(stem + "-depth.png", depth);
+  cv::imwrite(stem + "-mask.png", images.image.mask());
+  cv::imwrite(stem + "-restored.png", restored);
+}
+
+nlohmann::json report_json(const RepairCommand& command, const RepairResult& result,
+                           double seconds) {
+  nlohmann::json holes = nlohmann::json::array();
+  for (const HoleReport& hole : result.holes) {
+    holes.push_back({{"id", hole.id},
+                     {"pass", hole.pass},
+                     {"loop", hole.loop},
+                     {"boundary_vertices", hole.boundary_vertices},
+                     {"area", hole.area},
+                     {"rings", hole.rings},
+                     {"zone_faces", hole.zone_faces},
+                     {"image_size", {hole.image_size.width, hole.image_size.height}},
+                     {"masked_pixels", hole.masked_pixels},
+                     {"gap_pixels", hole.gap_pixels},
+                     {"new_vertices", hole.new_vertices},
+                     {"new_faces", hole.new_faces},
+                     {"seconds", hole.seconds},
+                     {"inpainting_seconds", hole.inpainting_seconds},
+                     {"other_holes", hole.other_holes},
+                     {"filled", hole.filled},
+                     {"failure", hole.failure}});
+  }
+  return {{"input", command.input},
+          {"output", command.output},
+          {"inpainter", command.options.inpainter},
+          {"holes", holes},
+          {"restoration_matrix", result.restoration_matrix},
+          {"holes_left", result.holes_left},
+          {"seconds", seconds}};
+}
+
+void print_summary(const RepairResult& result) {
+  std::printf("%5s %4s %9s %4s %11s %7s %8s %8s  %s\n", "hole", "pass", "boundary", "nu", "image",
+              "masked", "new v", "seconds", "result");
+  for (const HoleReport& hole : result.holes) {
+    const std::string size =
+        std::to_string(hole.image_size.width) + "x" + std::to_string(hole.image_size.height);
+    std::printf("%5d %4d %9d %4d %11s %7d %8d %8.3f  %s\n", hole.id, hole.pass,
+                hole.boundary_vertices, hole.rings, size.c_str(), hole.masked_pixels,
+                hole.new_vertices, hole.seconds, hole.filled ? "filled" : hole.failure.c_str());
+  }
+}
+
+int run_repair(RepairCommand& command) {
+  if (!command.in_place && fs::exists(command.output) &&
+      fs::equivalent(command.input, command.output)) {
+    throw InvalidInput(command.output + ": is the input; pass --in-place to overwrite it");
+  }
+  format_from_extension(command.output);  // fail before the work, not after
+  command.options.holes = parse_hole_ids(command.holes);
+  make_inpainter(command.options.inpainter);  // an unknown name fails here, before reading
+  const Mesh mesh = load_mesh(command.input);
+
+  const bool progress = stderr_is_terminal();
+  int done = 0;
+  command.options.on_hole = [&](const HoleReport& hole) {
+    ++done;
+    if (!progress) return;
+    std::fprintf(stderr, "\r\033[K[%d] hole %d: %s", done, hole.id,
+                 hole.filled
+                     ? ("filled, " + std::to_string(hole.new_vertices) + " vertices").c_str()
+                     : "left open");
+    std::fflush(stderr);
+  };
+  if (!command.debug_dir.empty()) {
+    fs::create_directories(command.debug_dir);
+    command.options.on_images = [&](const HoleImages& images) {
+      write_debug_images(command.debug_dir, images);
+    };
+  }
+
+  const auto start = std::chrono::steady_clock::now();
+  const RepairResult result = repair(mesh, command.options);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (progress && done > 0) std::fprintf(stderr, "\r\033[K");
+
+  WriteOptions write_options;
+  if (command.ascii) write_options.encoding = Encoding::ascii;
+  write_mesh(result.mesh, command.output, write_options);
+
+  const nlohmann::json report = report_json(command, result, seconds);
+  if (!command.report.empty()) {
+    std::ofstream(command.report) << report.dump(2) << "\n";
+  }
+  int failed = 0;
+  for (const HoleReport& hole : result.holes) failed += !hole.filled;
+  if (command.json) {
+    print_json(report);
+  } else {
+    print_summary(result);
+    std::printf("%zu holes, %d filled, %d left open; %.3f s; wrote %s\n", result.holes.size(),
+                static_cast<int>(result.holes.size()) - failed, result.holes_left, seconds,
+                command.output.c_str());
+  }
+  if (failed > 0 || result.holes_left > 0) {
+    std::cerr << "rangefill: " << command.output << ": partial repair, " << result.holes_left
+              << " holes left open\n";
+    return kPartial;
+  }
+  return kOk;
+}
+
+}  // namespace
+
+void add_repair_command(CLI::App& app, Runner& runner) {
+  auto command = std::make_shared<RepairCommand>();
+  RepairOptions& options = command->options;
+  CLI::App* sub = app.add_subcommand("repair", "Fill the holes of a mesh (Pérez et al. pipeline)");
+  sub->add_option("input", command->input, "Mesh with holes (.ply, .obj, .off, .stl)")->required();
+  sub->add_option("-o,--output", command->output, "Repaired mesh (format from the extension)")
+      ->required();
+  sub->add_option(
+         "--inpainter", options.inpainter,
+         "Back-end: " +
+             [] {
+               std::string names;
+               for (const std::string& name : inpainter_names())
+                 names += (names.empty() ? "" : ", ") + name;
+               return names;
+             }())
+      ->capture_default_str();
+  sub->add_option("--holes", command->holes,
+                  "Holes to fill: all, or ids as listed by `rangefill holes`")
+      ->capture_default_str();
+  sub->add_option("--max-hole-size", options.max_hole_edges,
+                  "Leave open holes with more boundary edges (0: no limit)");
+  sub->add_option("--max-hole-area", options.max_hole_area,
+                  "Leave open holes of larger area (0: no limit)");
+  sub->add_option("--report", command->report, "Write a JSON report of every hole to this file");
+  sub->add_option("--debug-dir", command->debug_dir,
+                  "Write each hole's depth, mask and restored images here");
+  sub->add_option("--threads", options.threads,
+                  "Holes filled in parallel (the output does not depend on it)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
+  sub->add_option("--passes", options.passes, "Rounds of detect-fill-merge")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100));
+  sub->add_option("--beta", options.image.beta, "Grid step q = beta * d_m (eq. 6)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.05, 4.0));
+  sub->add_option("--gamma", options.zone.gamma_degrees,
+                  "Normal-diffusion threshold in degrees (eq. 4)")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 180.0));
+  sub->add_option("--rings", options.zone.rings, "Rings of the zone of interest (0: eq. 2)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000));
+  sub->add_flag("--ascii", command->ascii, "Write ASCII instead of binary (PLY, STL)");
+  sub->add_flag("--in-place", command->in_place, "Allow OUT to be the input file");
+  sub->add_flag("--json", command->json, "Print the report as JSON instead of a table");
+  sub->callback([command, &runner] { runner = [command] { return run_repair(*command); }; });
+}
+
+}  // namespace rangefill::cli
