@@ -117,8 +117,24 @@ void fail(const std::string& name, const std::string& what) {
   throw InvalidInput(name + ": " + what);
 }
 
-int FaceBuilder::add(const std::vector<long long>& polygon, long long file_face) {
-  const std::string face = "face " + std::to_string(file_face);
+void fail_at(const std::string& name, long long line, const std::string& what) {
+  fail(name, "line " + std::to_string(line) + ": " + what);
+}
+
+std::string quote(std::string_view token) {
+  constexpr size_t kMaxLength = 40;
+  std::string quoted = "'";
+  for (size_t i = 0; i < std::min(token.size(), kMaxLength); ++i) {
+    const unsigned char c = static_cast<unsigned char>(token[i]);
+    quoted += (c >= 0x20 && c < 0x7f) ? static_cast<char>(c) : '?';
+  }
+  if (token.size() > kMaxLength) quoted += "...";
+  return quoted + "'";
+}
+
+int FaceBuilder::add(const std::vector<long long>& polygon, long long file_face, long long line) {
+  const std::string face =
+      (line > 0 ? "line " + std::to_string(line) + ": face " : "face ") + std::to_string(file_face);
   if (polygon.size() < 3) fail(name_, face + " has fewer than 3 vertices");
   const long long vertex_count = result_.mesh.vertex_count();
   corners_.clear();
@@ -166,6 +182,14 @@ void append_number(std::string& out, double value, ScalarType type) {
       break;
   }
   out.append(buffer, end.ptr);
+}
+
+void append_numbers(std::string& out, const Vec3& values, ScalarType type) {
+  append_number(out, values.x(), type);
+  out += ' ';
+  append_number(out, values.y(), type);
+  out += ' ';
+  append_number(out, values.z(), type);
 }
 
 bool TokenReader::next_line(char comment) {

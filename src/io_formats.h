@@ -2,8 +2,10 @@
 #pragma once
 
 #include <charconv>
+#include <cmath>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "rangefill/errors.h"
@@ -24,15 +26,22 @@ std::string serialize_stl(const Mesh& mesh, const WriteOptions& options);
 /// Throws InvalidInput("<name>: <what>").
 [[noreturn]] void fail(const std::string& name, const std::string& what);
 
+/// Throws InvalidInput("<name>: line <line>: <what>").
+[[noreturn]] void fail_at(const std::string& name, long long line, const std::string& what);
+
+/// `token` in single quotes for a message: at most 40 characters, bytes that are not printable
+/// ASCII shown as '?', so that the message stays one readable line.
+std::string quote(std::string_view token);
+
 /// Collects the faces of a file: range-checks each polygon's indices against the vertex count
 /// (naming the face as numbered in the file), triangulates polygons with more than three corners,
 /// and records one warning with their count at the end (finish()).
 class FaceBuilder {
  public:
   FaceBuilder(ReadResult& result, const std::string& name) : result_(result), name_(name) {}
-  /// Adds polygon number `file_face` (as the file counts faces); returns how many triangles it
-  /// made.
-  int add(const std::vector<long long>& polygon, long long file_face);
+  /// Adds polygon number `file_face` (as the file counts faces), read from line `line` when that is
+  /// not 0 (messages name it); returns how many triangles it made.
+  int add(const std::vector<long long>& polygon, long long file_face, long long line = 0);
   /// Appends the warning about triangulated polygons and fills face provenance.
   void finish();
 
@@ -46,6 +55,9 @@ class FaceBuilder {
 /// Shortest decimal text that reads back as the same value of `type`.
 void append_number(std::string& out, double value, ScalarType type);
 
+/// append_number for the three components, separated by spaces.
+void append_numbers(std::string& out, const Vec3& values, ScalarType type);
+
 /// Reads a number with std::from_chars (locale-independent); false if `text` is not one whole
 /// number.
 template <typename T>
@@ -53,6 +65,22 @@ bool parse_number(std::string_view text, T& value) {
   if (!text.empty() && text.front() == '+') text.remove_prefix(1);
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   return error == std::errc() && end == text.data() + text.size();
+}
+
+/// parse_number, or fail_at(name, line, ...) naming `token` if it is not a number of type T (for
+/// floating-point T, not a finite one).
+template <typename T>
+T parse_number_at(std::string_view token, const std::string& name, long long line) {
+  T value{};
+  if (!parse_number(token, value)) {
+    fail_at(name, line,
+            quote(token) +
+                (std::is_integral_v<T> ? " is not a valid integer" : " is not a valid number"));
+  }
+  if constexpr (std::is_floating_point_v<T>) {
+    if (!std::isfinite(value)) fail_at(name, line, quote(token) + " is not a finite number");
+  }
+  return value;
 }
 
 /// Splits text into lines and whitespace-separated tokens; tracks the line number for messages.
