@@ -227,11 +227,13 @@ class BodyReader {
     if (token.empty()) error("unexpected end of file");
     position_ = end;
     double value = 0;
-    if (!parse_number(token, value)) {
-      error("expected a number, found '" + std::string(token.substr(0, 32)) + "'");
+    float single = 0;  // float properties are parsed as floats: "0.1" must give the float 0.1
+    if (type == ScalarType::float32 ? !parse_number(token, single) : !parse_number(token, value)) {
+      error("expected a number, found " + quote(token));
     }
+    if (type == ScalarType::float32) value = single;
     if (is_integer(type) && value != static_cast<double>(static_cast<long long>(value))) {
-      error("expected an integer, found '" + std::string(token.substr(0, 32)) + "'");
+      error("expected an integer, found " + quote(token));
     }
     return value;
   }

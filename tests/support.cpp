@@ -1,6 +1,8 @@
 #include "support.h"
 
 #include <atomic>
+#include <cmath>
+#include <map>
 
 #include <unistd.h>
 
@@ -22,6 +24,12 @@ fs::path temporary_directory(const std::string& stem) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
+}
+
+Vec3 round_to_float(const Vec3& v) {
+  volatile float x = static_cast<float>(v.x()), y = static_cast<float>(v.y()),
+                 z = static_cast<float>(v.z());
+  return {x, y, z};
 }
 
 Mesh make_cube() {
@@ -49,6 +57,43 @@ Mesh make_grid(int n) {
     for (int x = 0; x < n; ++x) {
       triangles.push_back({id(x, y), id(x + 1, y), id(x + 1, y + 1)});
       triangles.push_back({id(x, y), id(x + 1, y + 1), id(x, y + 1)});
+    }
+  }
+  return make_mesh(positions, triangles);
+}
+
+Mesh make_sphere(int frequency) {
+  const double phi = (1 + std::sqrt(5.0)) / 2;
+  const std::vector<Vec3> corners = {{-1, phi, 0}, {1, phi, 0}, {-1, -phi, 0}, {1, -phi, 0},
+                                     {0, -1, phi}, {0, 1, phi}, {0, -1, -phi}, {0, 1, -phi},
+                                     {phi, 0, -1}, {phi, 0, 1}, {-phi, 0, -1}, {-phi, 0, 1}};
+  const std::vector<Triangle> faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                       {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                       {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                       {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  std::vector<Vec3> positions;
+  std::map<std::array<long long, 3>, int> index_of;  // vertices shared along icosahedron edges
+  auto vertex = [&](const Vec3& p) {
+    const Vec3 unit = p.normalized();
+    const std::array<long long, 3> key = {
+        std::llround(unit.x() * 1e9), std::llround(unit.y() * 1e9), std::llround(unit.z() * 1e9)};
+    const auto found = index_of.find(key);
+    if (found != index_of.end()) return found->second;
+    positions.push_back(unit);
+    return index_of[key] = static_cast<int>(positions.size()) - 1;
+  };
+  std::vector<Triangle> triangles;
+  const int n = frequency;
+  for (const Triangle& f : faces) {
+    const Vec3 &a = corners[f[0]], &b = corners[f[1]], &c = corners[f[2]];
+    auto at = [&](int i, int j) {
+      return vertex(a + (b - a) * (double(i) / n) + (c - a) * (double(j) / n));
+    };
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; i + j < n; ++j) {
+        triangles.push_back({at(i, j), at(i + 1, j), at(i, j + 1)});
+        if (i + j + 1 < n) triangles.push_back({at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+      }
     }
   }
   return make_mesh(positions, triangles);

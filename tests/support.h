@@ -15,12 +15,34 @@ std::optional<std::filesystem::path> shared_data_dir();
 /// A fresh empty directory under the system temp directory, unique per call.
 std::filesystem::path temporary_directory(const std::string& stem);
 
+/// The float nearest to each coordinate, back in double. Out of line on purpose: GCC 12 at -O2/-O3
+/// was seen to vectorise `v.cast<float>().cast<double>()` into a no-op for some components.
+Vec3 round_to_float(const Vec3& v);
+
 /// The unit cube [0,1]³ as 12 outward-facing triangles on 8 vertices.
 Mesh make_cube();
 
 /// A flat n×n grid of quads (2 triangles each) in z = 0 with spacing 1, counter-clockwise seen from
 /// +z.
 Mesh make_grid(int n);
+
+/// A unit sphere: the icosahedron with each face split into frequency² triangles, projected onto
+/// the sphere (edge length about 1.05 / frequency), outward-facing.
+Mesh make_sphere(int frequency);
+
+/// Removes the faces whose three vertices satisfy `inside`, keeping every vertex (unreferenced ones
+/// included, so that vertex indices stay those of `mesh`).
+template <typename Predicate>
+Mesh remove_faces(const Mesh& mesh, Predicate inside) {
+  std::vector<Triangle> kept;
+  for (const Triangle& t : mesh.triangles) {
+    if (!(inside(mesh.positions[t[0]]) && inside(mesh.positions[t[1]]) &&
+          inside(mesh.positions[t[2]]))) {
+      kept.push_back(t);
+    }
+  }
+  return make_mesh(mesh.positions, kept);
+}
 
 }  // namespace rangefill::testing
 

@@ -29,7 +29,7 @@ Mesh awkward_cube() {
 // The cube with coordinates exactly representable as floats, float32 storage.
 Mesh float_cube() {
   Mesh mesh = testing::make_cube();
-  for (Vec3& p : mesh.positions) p = (p / 3.0 + Vec3(0.1, -2.5, 1e3)).cast<float>().cast<double>();
+  for (Vec3& p : mesh.positions) p = testing::round_to_float(p / 3.0 + Vec3(0.1, -2.5, 1e3));
   mesh.storage.position = ScalarType::float32;
   return mesh;
 }

@@ -17,7 +17,7 @@ Mesh awkward_mesh(bool float32) {
   for (int v = 0; v < mesh.vertex_count(); ++v) {
     Vec3& p = mesh.positions[v];
     p = p * (1.0 / 3.0) + Vec3(0.1, -1e-7 * v, 12345.678901234567);
-    if (float32) p = p.cast<float>().cast<double>();
+    if (float32) p = testing::round_to_float(p);
   }
   mesh.storage.position = float32 ? ScalarType::float32 : ScalarType::float64;
   return mesh;
@@ -26,7 +26,8 @@ Mesh awkward_mesh(bool float32) {
 void expect_bit_identical(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   ASSERT_EQ(a.size(), b.size());
   for (size_t i = 0; i < a.size(); ++i) {
-    EXPECT_EQ(std::memcmp(a[i].data(), b[i].data(), sizeof(double) * 3), 0) << "vertex " << i;
+    EXPECT_EQ(std::memcmp(a[i].data(), b[i].data(), sizeof(double) * 3), 0)
+        << "vertex " << i << ": " << a[i].transpose() << " vs " << b[i].transpose();
   }
 }
 
@@ -47,6 +48,7 @@ std::string message_of(const std::string& bytes) {
 TEST(PlyIo, BinaryPositionsRoundTripBitExactInBothEndiannessesAndPrecisions) {
   for (bool float32 : {false, true}) {
     for (bool big_endian : {false, true}) {
+      SCOPED_TRACE(std::string(float32 ? "float" : "double") + (big_endian ? " big" : " little"));
       const Mesh mesh = awkward_mesh(float32);
       WriteOptions options;
       options.big_endian = big_endian;
@@ -75,7 +77,7 @@ TEST(PlyIo, ColoursNormalsExtraPropertiesAndProvenanceSurvive) {
   Mesh mesh = testing::make_cube();
   for (int v = 0; v < mesh.vertex_count(); ++v) {
     mesh.colors.push_back(Rgb(v * 30, 255 - v * 7, 128) / 255.0f);
-    mesh.normals.push_back(mesh.positions[v].normalized().cast<float>().cast<double>());
+    mesh.normals.push_back(testing::round_to_float(mesh.positions[v].normalized()));
   }
   mesh.vertex_properties.push_back({"quality", ScalarType::float32, {}});
   mesh.vertex_properties.push_back({"alpha", ScalarType::uint8, {}});

@@ -175,6 +175,9 @@ void add_repair_command(CLI::App& app, Runner& runner) {
                return names;
              }())
       ->capture_default_str();
+  sub->add_option("--radius", options.inpainting.radius, "Neighbourhood radius in pixels (telea, ns)")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 100.0));
   sub->add_option("--holes", command->holes,
                   "Holes to fill: all, or ids as listed by `rangefill holes`")
       ->capture_default_str();
