@@ -5,7 +5,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libopencv-dev libpcl-dev libceres-dev
   libcgal-dev libgtest-dev libbenchmark-dev
-  nlohmann-json3-dev libcli11-dev libtinyobjloader-dev
+  nlohmann-json3-dev libcli11-dev
 )
 missing=()
 for package in "${packages[@]}"; do
