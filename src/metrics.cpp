@@ -23,7 +23,9 @@ using CgalTriangle = Kernel::Triangle_3;
 using Primitive = CGAL::AABB_triangle_primitive<Kernel, std::vector<CgalTriangle>::const_iterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 
-Point to_point(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
+Point to_point(const Vec3& p) {
+  return {p.x(), p.y(), p.z()};
+}
 
 std::vector<CgalTriangle> to_triangles(const Mesh& mesh, const std::vector<int>& faces) {
   std::vector<CgalTriangle> triangles;
@@ -86,7 +88,8 @@ SurfaceDistance surface_distance(const Mesh& first, const std::vector<int>& firs
   distance.from_first = from_first;
   distance.from_second = from_second;
   distance.hausdorff = std::max(from_first, from_second);
-  distance.mean = (first_sum + second_sum) / static_cast<double>(first_samples.size() + second_samples.size());
+  distance.mean =
+      (first_sum + second_sum) / static_cast<double>(first_samples.size() + second_samples.size());
   return distance;
 }
 
@@ -116,9 +119,8 @@ int count_self_intersections(const Mesh& mesh, const std::vector<int>& faces) {
       const int other = static_cast<int>(hit - triangles.begin());
       if (other == face || (queried.count(other) && other < face)) continue;
       const Triangle& u = mesh.triangles[other];
-      const bool share = std::any_of(t.begin(), t.end(), [&](int v) {
-        return v == u[0] || v == u[1] || v == u[2];
-      });
+      const bool share = std::any_of(t.begin(), t.end(),
+                                     [&](int v) { return v == u[0] || v == u[1] || v == u[2]; });
       if (!share) ++count;
     }
   }
@@ -139,9 +141,47 @@ double mean_edge_length(const Mesh& mesh, const std::vector<int>& faces) {
 std::vector<int> faces_of_hole(const Mesh& mesh, int hole) {
   std::vector<int> faces;
   for (int f = 0; f < mesh.face_count(); ++f) {
-    if (hole == kAnyHole ? mesh.face_hole[f] != kOriginal : mesh.face_hole[f] == hole) faces.push_back(f);
+    if (hole == kAnyHole ? mesh.face_hole[f] != kOriginal : mesh.face_hole[f] == hole)
+      faces.push_back(f);
   }
   return faces;
+}
+
+std::vector<HoleScore> score_repair(const Mesh& original, const PunchResult& punched,
+                                    const RepairResult& repaired, double mean_edge) {
+  // Punched hole of each input vertex on a removed face (holes are apart, so at most one).
+  std::vector<int> hole_of_vertex(original.vertex_count(), -1);
+  for (size_t h = 0; h < punched.holes.size(); ++h) {
+    for (int face : punched.holes[h].removed_faces) {
+      for (int v : original.triangles[face]) hole_of_vertex[v] = static_cast<int>(h);
+    }
+  }
+  const HoleSet loops = find_holes(punched.mesh, build_topology(punched.mesh));
+  std::vector<HoleScore> scores(punched.holes.size());
+  for (size_t h = 0; h < scores.size(); ++h) {
+    scores[h].hole = static_cast<int>(h);
+    scores[h].failure = "not attempted";
+    for (int face : punched.holes[h].removed_faces)
+      scores[h].area += 0.5 * triangle_cross(original, face).norm();
+  }
+  for (const HoleReport& report : repaired.holes) {
+    if (report.pass != 0) continue;
+    const int first = loops.loops.at(report.loop).vertices.front();
+    const int h = hole_of_vertex[punched.original_vertex[first]];
+    if (h < 0) continue;
+    HoleScore& score = scores[h];
+    score.filled = report.filled;
+    score.failure = report.failure;
+    score.new_vertices = report.new_vertices;
+    score.new_faces = report.new_faces;
+    score.seconds = report.seconds;
+    if (!report.filled) continue;
+    const std::vector<int> patch = faces_of_hole(repaired.mesh, report.id);
+    score.distance = surface_distance(repaired.mesh, patch, original,
+                                      punched.holes[h].removed_faces, mean_edge / 4);
+    score.edge_ratio = mean_edge_length(repaired.mesh, patch) / mean_edge;
+  }
+  return scores;
 }
 
 }  // namespace rangefill

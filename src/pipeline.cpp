@@ -67,23 +67,32 @@ Fill fill_hole(const Mesh& mesh, const MeshTopology& topology, const HoleSet& ho
   report.other_holes = zone.other_holes;
   if (zone.faces.empty()) throw ProcessingError(name + ": the zone of interest is empty");
 
-  const Projection projection = best_projection(mesh, zone, hole, options.projection);
+  const Projection projection = best_projection(mesh, topology, zone, hole, options.projection);
   if (projection.complex) {
-    throw ProcessingError(name +
-                          ": complex hole: its boundary self-intersects on every plane tried (" +
-                          std::to_string(projection.orientations_tried) + ")");
+    throw ProcessingError(name + ": complex hole: no plane tried (" +
+                          std::to_string(projection.orientations_tried) +
+                          ") sees its rim from the front with a simple boundary (Section VI-C)");
   }
+  const Zone visible = visible_part(mesh, topology, zone, hole, projection.frame);
+  report.zone_faces = static_cast<int>(visible.faces.size());
 
-  RangeImage image = rasterize_zone(mesh, zone, hole, projection.frame, mean_edge, options.image);
+  RangeImage image =
+      rasterize_zone(mesh, visible, hole, projection.frame, mean_edge, options.image);
   report.gap_pixels = fill_small_gaps(image).pixels;
   const cv::Mat mask = image.mask();
   report.image_size = image.depth.size();
   report.masked_pixels = cv::countNonZero(mask);
 
+  const Trend trend = fit_trend(image, options.trend, options.trend_ring);
+  report.trend = trend.kind;
+  const cv::Mat trend_image = trend.image(image.depth.size());
+  const cv::Mat residual = image.depth - trend_image;
+
   const Clock::time_point inpainting_start = Clock::now();
   cv::Mat restored;
-  inpainter.inpaint(image.depth, mask, restored);
+  inpainter.inpaint(residual, mask, restored);
   report.inpainting_seconds = seconds_since(inpainting_start);
+  restored += trend_image;
   if (options.on_images) options.on_images({report.id, image, restored});
 
   const Patch patch = back_project(mesh, hole, image, restored, options.back_projection);
@@ -162,8 +171,11 @@ RepairResult repair(const Mesh& input, const RepairOptions& options) {
     for (const BoundaryLoop& loop : holes.loops) {
       std::vector<int> key = sorted_vertices(loop);
       if (!seen.insert(key).second) continue;
-      const bool chosen = (pass > 0 || options.holes.empty() ||
-                           std::count(options.holes.begin(), options.holes.end(), loop.id)) &&
+      const bool named = std::count(options.holes.begin(), options.holes.end(), loop.id) > 0;
+      const bool skipped_border = pass == 0 && options.holes.empty() &&
+                                  options.skip_longest_loops && loop.longest_in_component;
+      if (skipped_border) result.skipped_borders.push_back(loop.id);
+      const bool chosen = (pass > 0 || named || (options.holes.empty() && !skipped_border)) &&
                           within_size_limits(loop, options);
       if (chosen) {
         selected.push_back(&loop);

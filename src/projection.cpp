@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <unordered_set>
 
 #include <Eigen/Eigenvalues>
 
@@ -117,8 +118,31 @@ std::vector<Vec2> project_loop(const Mesh& mesh, const BoundaryLoop& hole, const
   return points;
 }
 
-Projection best_projection(const Mesh& mesh, const Zone& zone, const BoundaryLoop& hole,
-                           const ProjectionOptions& options) {
+// The faces on the hole boundary: those holding one of its half-edges.
+static std::vector<int> boundary_faces(const Mesh& mesh, const MeshTopology& topology,
+                                       const BoundaryLoop& hole) {
+  std::vector<int> faces;
+  const size_t n = hole.vertices.size();
+  for (size_t k = 0; k < n; ++k) {
+    const int a = hole.vertices[k], b = hole.vertices[(k + 1) % n];
+    for (int i = topology.faces_of_vertex_begin(a); i < topology.faces_of_vertex_end(a); ++i) {
+      const int face = topology.vertex_faces[i];
+      for (int corner = 0; corner < 3; ++corner) {
+        const int h = 3 * face + corner;
+        if (topology.halfedge_source(mesh, h) == a && topology.halfedge_target(mesh, h) == b &&
+            topology.opposite[h] == kBoundary) {
+          faces.push_back(face);
+        }
+      }
+    }
+  }
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  return faces;
+}
+
+Projection best_projection(const Mesh& mesh, const MeshTopology& topology, const Zone& zone,
+                           const BoundaryLoop& hole, const ProjectionOptions& options) {
   std::vector<Vec3> area_vectors;
   Vec3 vector_area = Vec3::Zero();
   for (int face : zone.faces) {
@@ -168,11 +192,15 @@ Projection best_projection(const Mesh& mesh, const Zone& zone, const BoundaryLoo
   std::stable_sort(candidates.begin(), candidates.end(), better);
 
   Projection projection;
-  const double zone_area =
-      std::accumulate(area_vectors.begin(), area_vectors.end(), 0.0,
-                      [](double sum, const Vec3& a) { return sum + a.norm(); });
+  const std::vector<int> rim = boundary_faces(mesh, topology, hole);
   for (const Scored& candidate : candidates) {
-    if (candidate.folded > options.max_folded_fraction * zone_area) continue;
+    double rim_area = 0, rim_behind = 0;
+    for (int face : rim) {
+      const Vec3 cross = triangle_cross(mesh, face);
+      rim_area += cross.norm();
+      if (cross.dot(candidate.direction) <= 0) rim_behind += cross.norm();
+    }
+    if (rim_behind > options.max_rim_behind * rim_area) continue;
     if (projection.orientations_tried++ == options.max_orientations) break;
     Frame frame;
     frame.rotation = frame_axes(mesh, zone, candidate.direction);
@@ -187,6 +215,43 @@ Projection best_projection(const Mesh& mesh, const Zone& zone, const BoundaryLoo
   projection.complex = true;
   projection.frame.rotation = frame_axes(mesh, zone, best.direction);
   return projection;
+}
+
+Zone visible_part(const Mesh& mesh, const MeshTopology& topology, const Zone& zone,
+                  const BoundaryLoop& hole, const Frame& frame) {
+  const Vec3 view = frame.normal();
+  auto faces_viewer = [&](int face) { return triangle_cross(mesh, face).dot(view) > 0; };
+  std::unordered_set<int> zone_faces(zone.faces.begin(), zone.faces.end());
+  std::unordered_set<int> reached;
+  std::vector<int> stack;
+  for (int face : boundary_faces(mesh, topology, hole)) {
+    if (zone_faces.count(face) && faces_viewer(face) && reached.insert(face).second)
+      stack.push_back(face);
+  }
+  while (!stack.empty()) {
+    const int face = stack.back();
+    stack.pop_back();
+    for (int corner = 0; corner < 3; ++corner) {
+      const int opposite = topology.opposite[3 * face + corner];
+      if (opposite < 0) continue;
+      const int neighbour = halfedge_face(opposite);
+      if (zone_faces.count(neighbour) && faces_viewer(neighbour) &&
+          reached.insert(neighbour).second) {
+        stack.push_back(neighbour);
+      }
+    }
+  }
+  Zone visible = zone;
+  visible.faces.assign(reached.begin(), reached.end());
+  std::sort(visible.faces.begin(), visible.faces.end());
+  std::vector<int> vertices;
+  for (int face : visible.faces) {
+    for (int v : mesh.triangles[face]) vertices.push_back(v);
+  }
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  visible.vertices = std::move(vertices);
+  return visible;
 }
 
 }  // namespace rangefill

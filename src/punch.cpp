@@ -14,7 +14,9 @@ namespace rangefill {
 namespace {
 
 // Uniform in [0, 1) from 53 random bits: the same on every standard library.
-double uniform01(std::mt19937_64& random) { return (random() >> 11) * 0x1.0p-53; }
+double uniform01(std::mt19937_64& random) {
+  return (random() >> 11) * 0x1.0p-53;
+}
 
 // Dijkstra distances along edges from `source`, for vertices closer than `limit`.
 std::unordered_map<int, double> distances_within(const Mesh& mesh, const std::vector<int>& offsets,
@@ -54,7 +56,8 @@ bool is_simple_disk(const Mesh& mesh, const std::vector<int>& faces) {
     }
   }
   const long long euler = static_cast<long long>(vertex_index.size()) -
-                          static_cast<long long>(edge_faces.size()) + static_cast<long long>(faces.size());
+                          static_cast<long long>(edge_faces.size()) +
+                          static_cast<long long>(faces.size());
   if (euler != 1) return false;
   // Border: every border vertex on exactly two border edges, all in one cycle.
   std::map<int, std::vector<int>> border;
@@ -128,9 +131,11 @@ PunchResult punch_holes(const Mesh& mesh, const PunchOptions& options) {
   PunchResult result;
   for (int hole = 0; hole < options.holes; ++hole) {
     for (int attempt = 0; attempt < options.attempts; ++attempt) {
-      const int centre = static_cast<int>(random() % static_cast<std::uint64_t>(mesh.vertex_count()));
+      const int centre =
+          static_cast<int>(random() % static_cast<std::uint64_t>(mesh.vertex_count()));
       const double radius =
-          (options.min_radius + (options.max_radius - options.min_radius) * uniform01(random)) * mean_edge;
+          (options.min_radius + (options.max_radius - options.min_radius) * uniform01(random)) *
+          mean_edge;
       const auto distance = distances_within(mesh, offsets, neighbours, centre,
                                              radius + options.separation * mean_edge);
       bool near_other_hole = false;

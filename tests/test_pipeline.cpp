@@ -89,30 +89,43 @@ TEST(Pipeline, HarmonicSaddleComesBackWithNavierStokes) {
   }
   const Mesh saddle =
       testing::remove_faces(grid, [](const Vec3& p) { return p.head<2>().norm() < 0.4; });
-  RepairOptions options;
-  options.inpainter = "ns";
-  options.holes = inner_loops(saddle);
-  const RepairResult result = repair(saddle, options);
-  ASSERT_TRUE(result.holes.at(0).filled) << result.holes[0].failure;
   const double d_m = mean_edge_length(saddle);
-  double worst = 0;
-  for (const Vec3& p : generated_vertices(result.mesh)) {
-    worst = std::max(worst, std::abs(p.z() - (p.x() * p.x() - p.y() * p.y()) / 2));
+  // With the quadric trend the back-end only restores a residual of zero. Without it, OpenCV's NS
+  // (a fast-marching transport, not a Laplace solve) is off by 0.74-0.83 d_m on the bare image of
+  // this saddle for radii 5-10; a flat fill would be off by up to 1.6 d_m.
+  for (const auto& [trend, bound] : {std::pair{TrendKind::quadric, 0.1}, {TrendKind::none, 0.75}}) {
+    RepairOptions options;
+    options.inpainter = "ns";
+    options.trend = trend;
+    options.holes = inner_loops(saddle);
+    const RepairResult result = repair(saddle, options);
+    ASSERT_TRUE(result.holes.at(0).filled) << result.holes[0].failure;
+    double worst = 0;
+    for (const Vec3& p : generated_vertices(result.mesh)) {
+      worst = std::max(worst, std::abs(p.z() - (p.x() * p.x() - p.y() * p.y()) / 2));
+    }
+    std::printf("saddle, ns, trend %s: max |z - (x^2 - y^2)/2| = %.4f d_m\n",
+                trend_name(trend).c_str(), worst / d_m);
+    EXPECT_LT(worst, bound * d_m) << trend_name(trend);
   }
-  RecordProperty("max_deviation_over_d_m", std::to_string(worst / d_m));
-  std::printf("saddle, ns: max |z - (x^2 - y^2)/2| = %.4f d_m\n", worst / d_m);
-  // OpenCV's NS is a fast-marching transport, not a Laplace solve: on the bare image of this saddle
-  // it is off by 0.74-0.83 d_m for radii 5-10 too. A flat fill would be off by up to 1.6 d_m.
-  EXPECT_LT(worst, 0.75 * d_m);
 }
 
 struct CapCase {
   std::string backend;
   double half_angle_degrees;
+  double max_above_sphere;  // in d_m
 };
+
+void PrintTo(const CapCase& c, std::ostream* os) {
+  *os << c.backend << " " << c.half_angle_degrees << "deg";
+}
 
 class SphereCap : public ::testing::TestWithParam<CapCase> {};
 
+// The generated vertices never sink below the cutting plane (a flat fill is the worst acceptable)
+// and stay close to the sphere. Above it the quadric trend overshoots on the wide cap: a height
+// field continued with the curvature of the rim rises above a sphere (whose height field curves
+// faster towards its rim); 40° gives about 1.1 d_m, hence the looser bound there.
 TEST_P(SphereCap, FillStaysBetweenCuttingPlaneAndSphere) {
   const Mesh sphere = testing::make_sphere(24);
   const double d_m = mean_edge_length(sphere);
@@ -131,25 +144,27 @@ TEST_P(SphereCap, FillStaysBetweenCuttingPlaneAndSphere) {
   // The boundary is jagged: the plane is taken through its lowest vertex.
   double plane = 1;
   const HoleSet holes = find_holes(capless, build_topology(capless));
-  for (int v : holes.loops.at(0).vertices) {
-    plane = std::min(plane, capless.positions[v].z());
-  }
-  double below_sphere = 0;
+  for (int v : holes.loops.at(0).vertices) plane = std::min(plane, capless.positions[v].z());
+  double below_sphere = 0, above_sphere = 0, lowest = 1;
   for (const Vec3& p : generated_vertices(result.mesh)) {
-    EXPECT_GT(p.z(), plane - 0.1 * d_m);
-    EXPECT_LT(p.norm(), 1 + 0.1 * d_m);
+    lowest = std::min(lowest, p.z());
     below_sphere = std::max(below_sphere, 1 - p.norm());
+    above_sphere = std::max(above_sphere, p.norm() - 1);
   }
+  EXPECT_GT(lowest, plane - 0.1 * d_m);
+  EXPECT_LT(above_sphere, GetParam().max_above_sphere * d_m);
   std::printf(
-      "cap %g deg, %s: deepest generated vertex %.3f d_m below the sphere (flat fill: %.3f)\n",
+      "cap %g deg, %s: generated vertices from %.3f d_m below to %.3f d_m above the sphere; "
+      "a flat fill reaches %.3f d_m below\n",
       GetParam().half_angle_degrees, GetParam().backend.c_str(), below_sphere / d_m,
-      (1 - plane) / d_m);
+      above_sphere / d_m, (1 - plane) / d_m);
 }
 
 std::vector<CapCase> cap_cases() {
   std::vector<CapCase> cases;
   for (const std::string& backend : inpainter_names()) {
-    for (double angle : {20.0, 40.0}) cases.push_back({backend, angle});
+    cases.push_back({backend, 20, 0.1});
+    cases.push_back({backend, 40, 1.5});
   }
   return cases;
 }
@@ -159,6 +174,23 @@ INSTANTIATE_TEST_SUITE_P(Pipeline, SphereCap, ::testing::ValuesIn(cap_cases()),
                            return info.param.backend + "_" +
                                   std::to_string(static_cast<int>(info.param.half_angle_degrees));
                          });
+
+TEST(Pipeline, PaperPipelineWithoutTrendSagsBelowTheCutOnACap) {
+  // Why the trend is on by default: OpenCV's back-ends alone fill a 40° cap below its cutting
+  // plane, worse than a flat fill.
+  const Mesh capless = testing::remove_faces(
+      testing::make_sphere(24), [](const Vec3& p) { return p.z() > std::cos(40 * M_PI / 180); });
+  const HoleSet holes = find_holes(capless, build_topology(capless));
+  double plane = 1;
+  for (int v : holes.loops.at(0).vertices) plane = std::min(plane, capless.positions[v].z());
+  RepairOptions options;
+  options.trend = TrendKind::none;
+  const RepairResult result = repair(capless, options);
+  ASSERT_TRUE(result.holes.at(0).filled);
+  double lowest = 1;
+  for (const Vec3& p : generated_vertices(result.mesh)) lowest = std::min(lowest, p.z());
+  EXPECT_LT(lowest, plane);
+}
 
 TEST(Pipeline, ResultDoesNotDependOnThreadCount) {
   Mesh sphere = testing::make_sphere(16);

@@ -4,15 +4,17 @@
 #include <vector>
 
 #include "rangefill/mesh.h"
+#include "rangefill/pipeline.h"
+#include "rangefill/punch.h"
 
 namespace rangefill {
 
 /// Distances between two triangle sets, each given as a mesh and the faces to use.
 struct SurfaceDistance {
-  double hausdorff = 0;       // max of the two one-sided distances
-  double from_first = 0;      // max over points of the first set of the distance to the second
-  double from_second = 0;     // max over points of the second set of the distance to the first
-  double mean = 0;            // mean over the samples of both sets of the distance to the other
+  double hausdorff = 0;    // max of the two one-sided distances
+  double from_first = 0;   // max over points of the first set of the distance to the second
+  double from_second = 0;  // max over points of the second set of the distance to the first
+  double mean = 0;         // mean over the samples of both sets of the distance to the other
 };
 
 /// Samples both sets (vertices and a barycentric grid no coarser than `spacing` on every triangle)
@@ -45,5 +47,25 @@ double mean_edge_length(const Mesh& mesh, const std::vector<int>& faces);
 /// The faces whose provenance is `hole` (or every generated face for kAnyHole).
 inline constexpr int kAnyHole = -2;
 std::vector<int> faces_of_hole(const Mesh& mesh, int hole);
+
+/// How well one punched hole was restored, distances in world units.
+struct HoleScore {
+  int hole = 0;     // index in PunchResult::holes
+  double area = 0;  // area of the removed faces
+  bool filled = false;
+  std::string failure;
+  SurfaceDistance distance;  // first = the patch, second = the removed faces
+  double edge_ratio = 0;     // mean patch edge / d_m
+  int new_vertices = 0;
+  int new_faces = 0;
+  double seconds = 0;
+};
+
+/// Scores a repair of `punched.mesh` against the faces removed from `original`: each punched hole
+/// is matched to the report of the loop it left, its patch to the generated faces with that
+/// report's id. Distances are sampled at spacing d_m / 4. Holes the repair did not attempt count as
+/// not filled.
+std::vector<HoleScore> score_repair(const Mesh& original, const PunchResult& punched,
+                                    const RepairResult& repaired, double mean_edge);
 
 }  // namespace rangefill

@@ -16,6 +16,7 @@
 #include "rangefill/projection.h"
 #include "rangefill/range_image.h"
 #include "rangefill/stitch.h"
+#include "rangefill/trend.h"
 #include "rangefill/zone.h"
 
 namespace rangefill {
@@ -33,6 +34,7 @@ struct HoleReport {
   cv::Size image_size;
   int masked_pixels = 0;
   int gap_pixels = 0;
+  TrendKind trend = TrendKind::none;  // the trend actually fitted (after fallbacks)
   int new_vertices = 0;
   int new_faces = 0;
   double seconds = 0;             // whole hole
@@ -52,15 +54,23 @@ struct HoleImages {
 struct RepairOptions {
   std::string inpainter = "ns";
   InpainterOptions inpainting;
+  /// Trend removed before inpainting and added back (trend.h). Quadric by default: OpenCV's telea
+  /// and ns are weighted means at heart and, on curved surfaces, pull a fill towards the lower ring
+  /// around the hole (a cap of a sphere came back below its cutting plane); the back-end then only
+  /// restores the residual. `none` is the paper's pipeline, for ablations.
+  TrendKind trend = TrendKind::quadric;
+  double trend_ring = 3;  // known pixels within this many pixels of the hole are fitted
   ZoneOptions zone;
   ProjectionOptions projection;
   RangeImageOptions image;
   BackProjectionOptions back_projection;
-  std::vector<int> holes;    // ids of the input's loops to fill; empty = every loop
-  int max_hole_edges = 0;    // loops with more boundary edges are left open; 0 = no limit
-  double max_hole_area = 0;  // loops with a larger area are left open; 0 = no limit
-  int passes = 3;            // rounds of detect–fill–merge (Section IX)
-  int threads = 1;           // holes of a pass are independent; the result does not depend on it
+  std::vector<int> holes;           // ids of the input's loops to fill; empty = every loop
+  bool skip_longest_loops = false;  // with `holes` empty, leave open the longest loop of each
+                                    // component: the outer border of an open scan
+  int max_hole_edges = 0;           // loops with more boundary edges are left open; 0 = no limit
+  double max_hole_area = 0;         // loops with a larger area are left open; 0 = no limit
+  int passes = 3;                   // rounds of detect–fill–merge (Section IX)
+  int threads = 1;  // holes of a pass are independent; the result does not depend on it
   std::function<void(const HoleReport&)> on_hole;    // after each hole (any thread, serialised)
   std::function<void(const HoleImages&)> on_images;  // after each inpainting (serialised)
 };
@@ -71,7 +81,8 @@ struct RepairResult {
   /// Eq. 17: row 0 counts the input's vertices, edges and faces; row i + 1 those added by the i-th
   /// filled hole, in the order the fills were merged.
   std::vector<std::array<long long, 3>> restoration_matrix;
-  int holes_left = 0;  // boundary loops of the result that were asked to be filled
+  int holes_left = 0;                // boundary loops of the result that were asked to be filled
+  std::vector<int> skipped_borders;  // input loops left open by skip_longest_loops
 };
 
 /// Fills one hole of `mesh` (Sections V–VIII). Reads the mesh only; safe to call concurrently.

@@ -8,6 +8,7 @@
 
 #include "rangefill/holes.h"
 #include "rangefill/mesh.h"
+#include "rangefill/topology.h"
 #include "rangefill/zone.h"
 
 namespace rangefill {
@@ -24,11 +25,12 @@ struct Frame {
 };
 
 struct ProjectionOptions {
-  int search_directions = 256;        // directions sampled on the cap around the start
-  double search_cap_degrees = 80;     // half-angle of that cap
-  int refinements = 3;                // each halves the cap around the best direction so far
-  double max_folded_fraction = 0.02;  // back-facing zone area allowed, relative to the zone area
-  int max_orientations = 64;          // candidates checked for a simple boundary before giving up
+  int search_directions = 256;     // directions sampled on the cap around the start
+  double search_cap_degrees = 80;  // half-angle of that cap
+  int refinements = 3;             // each halves the cap around the best direction so far
+  int max_orientations = 64;       // candidates checked before the hole is declared complex
+  double max_rim_behind = 0.1;     // area fraction of the faces on the hole boundary that may be
+                                   // seen from behind (a jagged rim has a few steep slivers)
 };
 
 struct Projection {
@@ -40,13 +42,21 @@ struct Projection {
 };
 
 /// Chooses the plane (Section VI, Fig. 8). Candidates: the area-weighted normal of the zone, the
-/// smallest principal axis of its vertices (PCA), and directions sampled on caps around the best
-/// of them, scored by projected area minus folded area (n·Σa_f − folded). The best candidate whose
-/// folded area is within `max_folded_fraction` and onto which the hole boundary projects as a
-/// simple polygon wins; if none does, the result is marked complex. In the frame, local x is the
-/// main axis of the projected zone (a tight image), the origin the centroid of the boundary.
-Projection best_projection(const Mesh& mesh, const Zone& zone, const BoundaryLoop& hole,
-                           const ProjectionOptions& options = {});
+/// hole's own vector area, the smallest principal axis of the zone's vertices (PCA), and directions
+/// sampled on caps around the best of them, scored by projected minus twice the folded area
+/// (n·Σa_f − folded). The best candidate wins under which the faces on the hole boundary face the
+/// viewer (up to max_rim_behind of their area) and the boundary projects as a simple polygon; if
+/// none does, the result is marked
+/// complex. Faces of the zone seen from behind are left to visible_part(). In the frame, local x is
+/// the main axis of the projected zone (a tight image), the origin the centroid of the boundary.
+Projection best_projection(const Mesh& mesh, const MeshTopology& topology, const Zone& zone,
+                           const BoundaryLoop& hole, const ProjectionOptions& options = {});
+
+/// The part of the zone that the frame sees without fold-over: its faces that face the viewer and
+/// are connected through shared edges, across such faces only, to the faces on the hole boundary.
+/// Folds further out (a zone wrapping round a limb) are cut off instead of failing the hole.
+Zone visible_part(const Mesh& mesh, const MeshTopology& topology, const Zone& zone,
+                  const BoundaryLoop& hole, const Frame& frame);
 
 /// True if the closed polygon (consecutive points joined, last to first) has no two non-adjacent
 /// edges that touch or cross and no repeated point.

@@ -12,22 +12,22 @@ namespace rangefill {
 struct PunchOptions {
   int holes = 5;
   std::uint64_t seed = 1;
-  double min_radius = 3;   // geodesic radius, in units of d_m
+  double min_radius = 3;  // geodesic radius, in units of d_m
   double max_radius = 15;
-  double separation = 4;   // least geodesic gap between two holes, in units of d_m
-  int attempts = 200;      // random centres tried per hole before giving up on it
+  double separation = 4;  // least geodesic gap between two holes, in units of d_m
+  int attempts = 200;     // random centres tried per hole before giving up on it
 };
 
 struct PunchedHole {
-  int centre = 0;                 // vertex of the input mesh
-  double radius = 0;              // geodesic radius (world units)
-  std::vector<int> removed_faces; // faces of the input mesh, ascending
+  int centre = 0;                  // vertex of the input mesh
+  double radius = 0;               // geodesic radius (world units)
+  std::vector<int> removed_faces;  // faces of the input mesh, ascending
 };
 
 struct PunchResult {
-  Mesh mesh;                       // the input without the removed faces and their inner vertices
+  Mesh mesh;                         // the input without the removed faces and their inner vertices
   std::vector<int> original_vertex;  // per vertex of `mesh`, its index in the input
-  std::vector<PunchedHole> holes;  // may be fewer than asked when no valid place was found
+  std::vector<PunchedHole> holes;    // may be fewer than asked when no valid place was found
 };
 
 /// Removes geodesic disks (Dijkstra distance along edges from a random vertex, radius uniform in

@@ -19,6 +19,12 @@ bool stderr_is_terminal() {
   return ::isatty(STDERR_FILENO) == 1;
 }
 
+std::string join(const std::vector<std::string>& items) {
+  std::string joined;
+  for (const std::string& item : items) joined += (joined.empty() ? "" : ", ") + item;
+  return joined;
+}
+
 void print_json(const nlohmann::json& value) {
   std::cout << value.dump(2) << "\n";
 }

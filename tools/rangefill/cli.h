@@ -2,7 +2,9 @@
 #pragma once
 
 #include <functional>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -15,6 +17,15 @@ namespace rangefill::cli {
 /// (output written, some holes left open).
 enum ExitCode { kOk = 0, kUsage = 2, kBadInput = 3, kFailure = 4, kPartial = 5 };
 
+/// An argument that parsed but makes no sense (exit code 2).
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// "a, b, c" for messages and help texts.
+std::string join(const std::vector<std::string>& items);
+
 /// What a sub-command does once its arguments are parsed; returns the exit code.
 using Runner = std::function<int()>;
 
@@ -22,6 +33,7 @@ using Runner = std::function<int()>;
 void add_info_command(CLI::App& app, Runner& runner);
 void add_holes_command(CLI::App& app, Runner& runner);
 void add_repair_command(CLI::App& app, Runner& runner);
+void add_bench_command(CLI::App& app, Runner& runner);
 
 /// Reads a mesh, printing its warnings to stderr as "warning: ..." lines.
 Mesh load_mesh(const std::string& path);

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   cli::add_info_command(app, runner);
   cli::add_holes_command(app, runner);
   cli::add_repair_command(app, runner);
+  cli::add_bench_command(app, runner);
 
   try {
     app.parse(argc, argv);
@@ -25,6 +26,9 @@ int main(int argc, char** argv) {
 
   try {
     return runner();
+  } catch (const cli::UsageError& error) {
+    std::cerr << "rangefill: " << error.what() << " (see rangefill --help)\n";
+    return cli::kUsage;
   } catch (const InvalidInput& error) {
     std::cerr << "rangefill: " << error.what() << "\n";
     return cli::kBadInput;

@@ -19,8 +19,8 @@ namespace {
 namespace fs = std::filesystem;
 
 struct RepairCommand {
-  std::string input, output, report, debug_dir, holes = "all";
-  bool in_place = false, json = false, ascii = false;
+  std::string input, output, report, debug_dir, holes = "all", trend = "quadric";
+  bool in_place = false, json = false, ascii = false, fill_all = false;
   RepairOptions options;
 };
 
@@ -34,7 +34,7 @@ std::vector<int> parse_hole_ids(const std::string& text) {
       ids.push_back(std::stoi(item, &used));
       if (used != item.size() || ids.back() < 0) throw std::invalid_argument(item);
     } catch (const std::exception&) {
-      throw InvalidInput("--holes: '" + item + "' is not a hole id (expected all or ID,ID,...)");
+      throw UsageError("--holes: '" + item + "' is not a hole id (expected all or ID,ID,...)");
     }
   }
   return ids;
@@ -67,6 +67,7 @@ nlohmann::json report_json(const RepairCommand& command, const RepairResult& res
                      {"image_size", {hole.image_size.width, hole.image_size.height}},
                      {"masked_pixels", hole.masked_pixels},
                      {"gap_pixels", hole.gap_pixels},
+                     {"trend", trend_name(hole.trend)},
                      {"new_vertices", hole.new_vertices},
                      {"new_faces", hole.new_faces},
                      {"seconds", hole.seconds},
@@ -78,9 +79,11 @@ nlohmann::json report_json(const RepairCommand& command, const RepairResult& res
   return {{"input", command.input},
           {"output", command.output},
           {"inpainter", command.options.inpainter},
+          {"trend", command.trend},
           {"holes", holes},
           {"restoration_matrix", result.restoration_matrix},
           {"holes_left", result.holes_left},
+          {"skipped_borders", result.skipped_borders},
           {"seconds", seconds}};
 }
 
@@ -99,11 +102,12 @@ void print_summary(const RepairResult& result) {
 int run_repair(RepairCommand& command) {
   if (!command.in_place && fs::exists(command.output) &&
       fs::equivalent(command.input, command.output)) {
-    throw InvalidInput(command.output + ": is the input; pass --in-place to overwrite it");
+    throw UsageError(command.output + ": is the input; pass --in-place to overwrite it");
   }
   format_from_extension(command.output);  // fail before the work, not after
   command.options.holes = parse_hole_ids(command.holes);
-  make_inpainter(command.options.inpainter);  // an unknown name fails here, before reading
+  command.options.trend = trend_from_name(command.trend);
+  command.options.skip_longest_loops = !command.fill_all;
   const Mesh mesh = load_mesh(command.input);
 
   const bool progress = stderr_is_terminal();
@@ -134,6 +138,11 @@ int run_repair(RepairCommand& command) {
   if (command.ascii) write_options.encoding = Encoding::ascii;
   write_mesh(result.mesh, command.output, write_options);
 
+  for (int id : result.skipped_borders) {
+    std::cerr << "rangefill: note: loop " << id
+              << " is the longest of its component and was left open as the border of an open "
+                 "scan; --fill-all fills it\n";
+  }
   const nlohmann::json report = report_json(command, result, seconds);
   if (!command.report.empty()) {
     std::ofstream(command.report) << report.dump(2) << "\n";
@@ -165,19 +174,18 @@ void add_repair_command(CLI::App& app, Runner& runner) {
   sub->add_option("input", command->input, "Mesh with holes (.ply, .obj, .off, .stl)")->required();
   sub->add_option("-o,--output", command->output, "Repaired mesh (format from the extension)")
       ->required();
-  sub->add_option(
-         "--inpainter", options.inpainter,
-         "Back-end: " +
-             [] {
-               std::string names;
-               for (const std::string& name : inpainter_names())
-                 names += (names.empty() ? "" : ", ") + name;
-               return names;
-             }())
-      ->capture_default_str();
-  sub->add_option("--radius", options.inpainting.radius, "Neighbourhood radius in pixels (telea, ns)")
+  sub->add_option("--inpainter", options.inpainter, "Back-end: " + join(inpainter_names()))
+      ->capture_default_str()
+      ->check(CLI::IsMember(inpainter_names()));
+  sub->add_option("--radius", options.inpainting.radius,
+                  "Neighbourhood radius in pixels (telea, ns)")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 100.0));
+  sub->add_option(
+         "--trend", command->trend,
+         "Surface removed before inpainting and added back: none (the paper), plane, quadric")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"none", "plane", "quadric"}));
   sub->add_option("--holes", command->holes,
                   "Holes to fill: all, or ids as listed by `rangefill holes`")
       ->capture_default_str();
@@ -205,6 +213,9 @@ void add_repair_command(CLI::App& app, Runner& runner) {
   sub->add_option("--rings", options.zone.rings, "Rings of the zone of interest (0: eq. 2)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1000));
+  sub->add_flag("--fill-all", command->fill_all,
+                "Also fill the longest loop of each component, left open by default as the border "
+                "of an open scan (with --holes all)");
   sub->add_flag("--ascii", command->ascii, "Write ASCII instead of binary (PLY, STL)");
   sub->add_flag("--in-place", command->in_place, "Allow OUT to be the input file");
   sub->add_flag("--json", command->json, "Print the report as JSON instead of a table");
