@@ -9,8 +9,6 @@ namespace rangefill {
 
 namespace {
 
-using Vec2 = Eigen::Vector2d;
-
 double distance_to_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
   const Vec2 ab = b - a;
   const double t =

@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "rangefill/errors.h"
+#include "rangefill/geometry2d.h"
 #include "rangefill/topology.h"
 
 namespace rangefill {
@@ -133,11 +134,6 @@ std::vector<Vec3> vertex_normals_from_faces(const Mesh& mesh) {
 }
 
 namespace {
-
-// Twice the signed area of the 2D triangle (a, b, c).
-double orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
-  return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
-}
 
 bool inside_triangle(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
                      const Eigen::Vector2d& c) {

@@ -21,7 +21,7 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
 using CgalTriangle = Kernel::Triangle_3;
 using Primitive = CGAL::AABB_triangle_primitive<Kernel, std::vector<CgalTriangle>::const_iterator>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+using AabbTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 
 Point to_point(const Vec3& p) {
   return {p.x(), p.y(), p.z()};
@@ -55,7 +55,7 @@ std::vector<Point> sample(const Mesh& mesh, const std::vector<int>& faces, doubl
 }
 
 // Max and sum of the distances from `samples` to the triangles of `tree`.
-std::pair<double, double> distances_to(const std::vector<Point>& samples, const Tree& tree) {
+std::pair<double, double> distances_to(const std::vector<Point>& samples, const AabbTree& tree) {
   double largest = 0, sum = 0;
   for (const Point& p : samples) {
     const double d = std::sqrt(tree.squared_distance(p));
@@ -76,8 +76,8 @@ SurfaceDistance surface_distance(const Mesh& first, const std::vector<int>& firs
   if (!(spacing > 0)) throw InvalidInput("surface distance: spacing must be positive");
   const std::vector<CgalTriangle> first_triangles = to_triangles(first, first_faces);
   const std::vector<CgalTriangle> second_triangles = to_triangles(second, second_faces);
-  Tree first_tree(first_triangles.begin(), first_triangles.end());
-  Tree second_tree(second_triangles.begin(), second_triangles.end());
+  AabbTree first_tree(first_triangles.begin(), first_triangles.end());
+  AabbTree second_tree(second_triangles.begin(), second_triangles.end());
   first_tree.accelerate_distance_queries();
   second_tree.accelerate_distance_queries();
   const std::vector<Point> first_samples = sample(first, first_faces, spacing);
@@ -103,25 +103,53 @@ ManifoldCheck check_manifold(const Mesh& mesh) {
   return check;
 }
 
-int count_self_intersections(const Mesh& mesh, const std::vector<int>& faces) {
+struct IntersectionIndex::Tree {
+  std::vector<CgalTriangle> triangles;
+  std::vector<Triangle> corners;
+  AabbTree tree;
+};
+
+IntersectionIndex::IntersectionIndex(const Mesh& mesh) : tree_(std::make_unique<Tree>()) {
   std::vector<int> all(mesh.face_count());
   std::iota(all.begin(), all.end(), 0);
-  const std::vector<CgalTriangle> triangles = to_triangles(mesh, all);
-  const Tree tree(triangles.begin(), triangles.end());
+  tree_->triangles = to_triangles(mesh, all);
+  tree_->corners = mesh.triangles;
+  tree_->tree.insert(tree_->triangles.begin(), tree_->triangles.end());
+  tree_->tree.build();
+}
+
+IntersectionIndex::~IntersectionIndex() = default;
+IntersectionIndex::IntersectionIndex(IntersectionIndex&&) noexcept = default;
+IntersectionIndex& IntersectionIndex::operator=(IntersectionIndex&&) noexcept = default;
+
+std::vector<int> IntersectionIndex::intersecting_faces(const Vec3& a, const Vec3& b, const Vec3& c,
+                                                       const Triangle& corners) const {
+  std::vector<int> faces;
+  if (tree_->triangles.empty()) return faces;
+  std::vector<Primitive::Id> hits;
+  tree_->tree.all_intersected_primitives(CgalTriangle(to_point(a), to_point(b), to_point(c)),
+                                         std::back_inserter(hits));
+  for (const auto& hit : hits) {
+    const int face = static_cast<int>(hit - tree_->triangles.cbegin());
+    const Triangle& u = tree_->corners[face];
+    const bool shares = std::any_of(corners.begin(), corners.end(), [&](int v) {
+      return v >= 0 && (v == u[0] || v == u[1] || v == u[2]);
+    });
+    if (!shares) faces.push_back(face);
+  }
+  std::sort(faces.begin(), faces.end());
+  return faces;
+}
+
+int count_self_intersections(const Mesh& mesh, const std::vector<int>& faces) {
+  const IntersectionIndex index(mesh);
   const std::set<int> queried(faces.begin(), faces.end());
   int count = 0;
-  std::vector<Primitive::Id> hits;
   for (int face : faces) {
-    hits.clear();
-    tree.all_intersected_primitives(triangles[face], std::back_inserter(hits));
     const Triangle& t = mesh.triangles[face];
-    for (const auto& hit : hits) {
-      const int other = static_cast<int>(hit - triangles.begin());
-      if (other == face || (queried.count(other) && other < face)) continue;
-      const Triangle& u = mesh.triangles[other];
-      const bool share = std::any_of(t.begin(), t.end(),
-                                     [&](int v) { return v == u[0] || v == u[1] || v == u[2]; });
-      if (!share) ++count;
+    for (int other : index.intersecting_faces(mesh.positions[t[0]], mesh.positions[t[1]],
+                                              mesh.positions[t[2]], t)) {
+      if (!(queried.count(other) && other < face)) ++count;
     }
   }
   return count;
@@ -145,43 +173,6 @@ std::vector<int> faces_of_hole(const Mesh& mesh, int hole) {
       faces.push_back(f);
   }
   return faces;
-}
-
-std::vector<HoleScore> score_repair(const Mesh& original, const PunchResult& punched,
-                                    const RepairResult& repaired, double mean_edge) {
-  // Punched hole of each input vertex on a removed face (holes are apart, so at most one).
-  std::vector<int> hole_of_vertex(original.vertex_count(), -1);
-  for (size_t h = 0; h < punched.holes.size(); ++h) {
-    for (int face : punched.holes[h].removed_faces) {
-      for (int v : original.triangles[face]) hole_of_vertex[v] = static_cast<int>(h);
-    }
-  }
-  const HoleSet loops = find_holes(punched.mesh, build_topology(punched.mesh));
-  std::vector<HoleScore> scores(punched.holes.size());
-  for (size_t h = 0; h < scores.size(); ++h) {
-    scores[h].hole = static_cast<int>(h);
-    scores[h].failure = "not attempted";
-    for (int face : punched.holes[h].removed_faces)
-      scores[h].area += 0.5 * triangle_cross(original, face).norm();
-  }
-  for (const HoleReport& report : repaired.holes) {
-    if (report.pass != 0) continue;
-    const int first = loops.loops.at(report.loop).vertices.front();
-    const int h = hole_of_vertex[punched.original_vertex[first]];
-    if (h < 0) continue;
-    HoleScore& score = scores[h];
-    score.filled = report.filled;
-    score.failure = report.failure;
-    score.new_vertices = report.new_vertices;
-    score.new_faces = report.new_faces;
-    score.seconds = report.seconds;
-    if (!report.filled) continue;
-    const std::vector<int> patch = faces_of_hole(repaired.mesh, report.id);
-    score.distance = surface_distance(repaired.mesh, patch, original,
-                                      punched.holes[h].removed_faces, mean_edge / 4);
-    score.edge_ratio = mean_edge_length(repaired.mesh, patch) / mean_edge;
-  }
-  return scores;
 }
 
 }  // namespace rangefill

@@ -5,10 +5,13 @@
 #include <chrono>
 #include <map>
 #include <mutex>
+#include <numeric>
 #include <optional>
 #include <set>
 #include <thread>
+#include <unordered_map>
 
+#include "rangefill/complex_hole.h"
 #include "rangefill/errors.h"
 
 namespace rangefill {
@@ -51,34 +54,45 @@ void parallel_for(int count, int threads, Task task) {
   for (std::thread& worker : workers) worker.join();
 }
 
-}  // namespace
-
-Fill fill_hole(const Mesh& mesh, const MeshTopology& topology, const HoleSet& holes,
-               const BoundaryLoop& hole, const std::vector<Vec3>& vertex_normals, double mean_edge,
-               const Inpainter& inpainter, const RepairOptions& options, HoleReport& report) {
-  const Clock::time_point start = Clock::now();
-  const std::string name = "hole " + std::to_string(hole.id);
-  report.boundary_vertices = static_cast<int>(hole.vertices.size());
-  report.area = hole.area;
-
-  const Zone zone = grow_zone(mesh, topology, holes, hole, vertex_normals, mean_edge, options.zone);
-  report.rings = zone.rings;
-  report.zone_faces = static_cast<int>(zone.faces.size());
-  report.other_holes = zone.other_holes;
-  if (zone.faces.empty()) throw ProcessingError(name + ": the zone of interest is empty");
-
-  const Projection projection = best_projection(mesh, topology, zone, hole, options.projection);
-  if (projection.complex) {
-    throw ProcessingError(name + ": complex hole: no plane tried (" +
-                          std::to_string(projection.orientations_tried) +
-                          ") sees its rim from the front with a simple boundary (Section VI-C)");
+// A fill triangle meets a face of the surface or a non-adjacent fill triangle.
+bool fill_intersects(const SurfaceContext& surface, const Fill& fill) {
+  const int boundary_size = static_cast<int>(fill.boundary.size());
+  Mesh own;  // the fill alone, its boundary first
+  for (int v : fill.boundary) own.positions.push_back(surface.mesh.positions[v]);
+  own.positions.insert(own.positions.end(), fill.points.begin(), fill.points.end());
+  own.triangles = fill.triangles;
+  for (const Triangle& t : fill.triangles) {
+    Triangle corners;
+    for (int k = 0; k < 3; ++k) corners[k] = t[k] < boundary_size ? fill.boundary[t[k]] : -1;
+    if (!surface.faces
+             .intersecting_faces(own.positions[t[0]], own.positions[t[1]], own.positions[t[2]],
+                                 corners)
+             .empty()) {
+      return true;
+    }
   }
-  const Zone visible = visible_part(mesh, topology, zone, hole, projection.frame);
+  std::vector<int> all(own.triangles.size());
+  std::iota(all.begin(), all.end(), 0);
+  return count_self_intersections(own, all) > 0;
+}
+
+// Sections VI–VIII on one plane: range image, trend, inpainting, back-projection, stitching.
+Fill fill_through_plane(const SurfaceContext& surface, const BoundaryLoop& hole, const Zone& zone,
+                        const Frame& frame, const Inpainter& inpainter,
+                        const RepairOptions& options, HoleReport& report) {
+  const Mesh& mesh = surface.mesh;
+  const MeshTopology& topology = surface.topology;
+  const Zone visible = visible_part(mesh, topology, zone, hole, frame);
   report.zone_faces = static_cast<int>(visible.faces.size());
 
-  RangeImage image =
-      rasterize_zone(mesh, visible, hole, projection.frame, mean_edge, options.image);
+  RangeImage image = rasterize_zone(mesh, visible, hole, frame, surface.mean_edge, options.image);
   report.gap_pixels = fill_small_gaps(image).pixels;
+  report.rim_support = rim_support(image);
+  if (report.rim_support < options.min_rim_support) {
+    throw ProcessingError("hole " + std::to_string(hole.id) + ": the plane sees only " +
+                          std::to_string(static_cast<int>(100 * report.rim_support)) +
+                          "% of the hole's surroundings");
+  }
   const cv::Mat mask = image.mask();
   report.image_size = image.depth.size();
   report.masked_pixels = cv::countNonZero(mask);
@@ -91,17 +105,86 @@ Fill fill_hole(const Mesh& mesh, const MeshTopology& topology, const HoleSet& ho
   const Clock::time_point inpainting_start = Clock::now();
   cv::Mat restored;
   inpainter.inpaint(residual, mask, restored);
-  report.inpainting_seconds = seconds_since(inpainting_start);
+  report.inpainting_seconds += seconds_since(inpainting_start);
   restored += trend_image;
   if (options.on_images) options.on_images({report.id, image, restored});
 
   const Patch patch = back_project(mesh, hole, image, restored, options.back_projection);
-  Fill fill = stitch(mesh, topology, hole, projection.frame, patch, triangulate_grid(patch));
-  report.new_vertices = static_cast<int>(fill.points.size());
-  report.new_faces = static_cast<int>(fill.triangles.size());
+  Fill fill = stitch(mesh, topology, hole, frame, patch, triangulate_grid(patch));
+  if (fill_intersects(surface, fill)) {
+    throw ProcessingError("hole " + std::to_string(hole.id) +
+                          ": the fill would intersect the surface or itself");
+  }
+  return fill;
+}
+
+}  // namespace
+
+SurfaceContext::SurfaceContext(const Mesh& surface_mesh, double mean_edge_length)
+    : mesh(surface_mesh),
+      topology(build_topology(surface_mesh)),
+      holes(find_holes(surface_mesh, topology)),
+      normals(vertex_normals_from_faces(surface_mesh)),
+      mean_edge(mean_edge_length > 0 ? mean_edge_length
+                                     : rangefill::mean_edge_length(surface_mesh, topology)),
+      faces(surface_mesh) {}
+
+Fill fill_hole(const SurfaceContext& surface, const BoundaryLoop& hole, const Inpainter& inpainter,
+               const RepairOptions& options, HoleReport& report) {
+  const Mesh& mesh = surface.mesh;
+  const MeshTopology& topology = surface.topology;
+  const double mean_edge = surface.mean_edge;
+  const Clock::time_point start = Clock::now();
+  const std::string name = "hole " + std::to_string(hole.id);
+  report.boundary_vertices = static_cast<int>(hole.vertices.size());
+  report.area = hole.area;
+
+  const Zone zone =
+      grow_zone(mesh, topology, surface.holes, hole, surface.normals, mean_edge, options.zone);
+  report.rings = zone.rings;
+  report.zone_faces = static_cast<int>(zone.faces.size());
+  report.other_holes = zone.other_holes;
+  if (zone.faces.empty()) throw ProcessingError(name + ": the zone of interest is empty");
+
+  // The best plane first; a plane whose fill is refused gives way to the next. A hole that no
+  // plane fills whole is filled in part (Section VI-C); the next pass sees the rest.
+  const ProjectionSearch search = find_projections(mesh, topology, zone, hole, options.projection);
+  std::string first_failure;
+  auto try_planes = [&](const BoundaryLoop& loop, const std::vector<Projection>& planes) {
+    for (const Projection& projection : planes) {
+      try {
+        return std::optional<Fill>(
+            fill_through_plane(surface, loop, zone, projection.frame, inpainter, options, report));
+      } catch (const ProcessingError& error) {
+        if (first_failure.empty()) first_failure = error.what();
+      }
+    }
+    return std::optional<Fill>();
+  };
+  std::optional<Fill> fill = try_planes(hole, search.planes);
+  if (!fill) {
+    for (const BoundaryLoop& part : split_complex_hole(mesh, topology, hole, search.best_frame)) {
+      fill =
+          try_planes(part, find_projections(mesh, topology, zone, part, options.projection).planes);
+      if (fill) {
+        report.partial = true;
+        break;
+      }
+    }
+  }
+  if (!fill) {
+    throw ProcessingError(first_failure.empty()
+                              ? name + ": complex hole: no plane tried (" +
+                                    std::to_string(search.orientations_tried) +
+                                    ") sees its rim from the front with a simple boundary, "
+                                    "nor one of its parts (Section VI-C)"
+                              : first_failure);
+  }
+  report.new_vertices = static_cast<int>(fill->points.size());
+  report.new_faces = static_cast<int>(fill->triangles.size());
   report.filled = true;
   report.seconds = seconds_since(start);
-  return fill;
+  return std::move(*fill);
 }
 
 std::array<long long, 3> merge_fill(Mesh& mesh, const Fill& fill, int hole_id) {
@@ -144,11 +227,7 @@ RepairResult repair(const Mesh& input, const RepairOptions& options) {
   Mesh& mesh = result.mesh;
   const std::unique_ptr<Inpainter> inpainter =
       make_inpainter(options.inpainter, options.inpainting);
-  MeshTopology topology = build_topology(mesh);
-  const double mean_edge = mean_edge_length(mesh, topology);
-  if (!(mean_edge > 0)) throw InvalidInput("repair: the mesh has no edges");
-  result.restoration_matrix.push_back(
-      {mesh.vertex_count(), static_cast<long long>(topology.edges.size()), mesh.face_count()});
+  double mean_edge = 0;  // the input's d_m, used in every pass
 
   // Serialised callbacks: workers report one at a time.
   std::mutex callback_mutex;
@@ -160,15 +239,21 @@ RepairResult repair(const Mesh& input, const RepairOptions& options) {
     };
   }
 
-  std::set<std::vector<int>> seen;       // loops already attempted or deliberately left open
-  std::set<std::vector<int>> left_open;  // loops the options exclude
+  std::set<std::vector<int>> seen;              // loops already attempted or deliberately left open
+  std::set<std::vector<int>> left_open;         // loops the options exclude
+  std::unordered_map<int, int> hole_of_vertex;  // boundary vertex -> id of the hole it bounded
   int next_id = 0;
   for (int pass = 0; pass < options.passes; ++pass) {
-    if (pass > 0) topology = build_topology(mesh);
-    const HoleSet holes = find_holes(mesh, topology);
-    const std::vector<Vec3> normals = vertex_normals_from_faces(mesh);
+    const SurfaceContext surface(mesh, mean_edge);
+    if (pass == 0) {
+      mean_edge = surface.mean_edge;
+      if (!(mean_edge > 0)) throw InvalidInput("repair: the mesh has no edges");
+      result.restoration_matrix.push_back({mesh.vertex_count(),
+                                           static_cast<long long>(surface.topology.edges.size()),
+                                           mesh.face_count()});
+    }
     std::vector<const BoundaryLoop*> selected;
-    for (const BoundaryLoop& loop : holes.loops) {
+    for (const BoundaryLoop& loop : surface.holes.loops) {
       std::vector<int> key = sorted_vertices(loop);
       if (!seen.insert(key).second) continue;
       const bool named = std::count(options.holes.begin(), options.holes.end(), loop.id) > 0;
@@ -185,19 +270,31 @@ RepairResult repair(const Mesh& input, const RepairOptions& options) {
     }
     if (selected.empty()) break;
 
-    const int id_base = next_id;
+    // Ids: an input loop keeps its own; a loop found later (the rest of a partly filled complex
+    // hole) takes the id of the hole its vertices came from, so one hole's patches share it.
     std::vector<HoleReport> reports(selected.size());
+    for (size_t i = 0; i < selected.size(); ++i) {
+      const BoundaryLoop& loop = *selected[i];
+      HoleReport& report = reports[i];
+      report.id = next_id + loop.id;
+      for (int v : loop.vertices) {
+        const auto origin = hole_of_vertex.find(v);
+        if (origin != hole_of_vertex.end()) {
+          report.id = origin->second;
+          break;
+        }
+      }
+      for (int v : loop.vertices) hole_of_vertex.emplace(v, report.id);
+      report.pass = pass;
+      report.loop = loop.id;
+    }
     std::vector<std::optional<Fill>> fills(selected.size());
     parallel_for(static_cast<int>(selected.size()), options.threads, [&](int i) {
       const BoundaryLoop& loop = *selected[i];
       HoleReport& report = reports[i];
-      report.id = id_base + loop.id;
-      report.pass = pass;
-      report.loop = loop.id;
       const Clock::time_point start = Clock::now();
       try {
-        fills[i] = fill_hole(mesh, topology, holes, loop, normals, mean_edge, *inpainter,
-                             worker_options, report);
+        fills[i] = fill_hole(surface, loop, *inpainter, worker_options, report);
       } catch (const std::exception& error) {
         report.failure = error.what();
         report.seconds = seconds_since(start);
@@ -211,11 +308,10 @@ RepairResult repair(const Mesh& input, const RepairOptions& options) {
       if (fills[i]) result.restoration_matrix.push_back(merge_fill(mesh, *fills[i], reports[i].id));
       result.holes.push_back(std::move(reports[i]));
     }
-    next_id = id_base + static_cast<int>(holes.loops.size());
+    next_id += static_cast<int>(surface.holes.loops.size());
   }
 
-  topology = build_topology(mesh);
-  for (const BoundaryLoop& loop : find_holes(mesh, topology).loops) {
+  for (const BoundaryLoop& loop : find_holes(mesh, build_topology(mesh)).loops) {
     result.holes_left += left_open.count(sorted_vertices(loop)) == 0;
   }
   return result;

@@ -11,28 +11,6 @@ namespace rangefill {
 
 namespace {
 
-using Vec2 = Eigen::Vector2d;
-
-double orient(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
-}
-
-bool on_segment(const Vec2& a, const Vec2& b, const Vec2& p) {
-  return std::min(a.x(), b.x()) <= p.x() && p.x() <= std::max(a.x(), b.x()) &&
-         std::min(a.y(), b.y()) <= p.y() && p.y() <= std::max(a.y(), b.y());
-}
-
-// Closed segments ab and cd share a point.
-bool segments_touch(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
-  const double o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a),
-               o4 = orient(c, d, b);
-  if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) {
-    return true;
-  }
-  return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) ||
-         (o3 == 0 && on_segment(c, d, a)) || (o4 == 0 && on_segment(c, d, b));
-}
-
 struct Scored {
   Vec3 direction;
   double score;  // projected minus twice folded area, i.e. n·Σa − folded
@@ -118,31 +96,23 @@ std::vector<Vec2> project_loop(const Mesh& mesh, const BoundaryLoop& hole, const
   return points;
 }
 
-// The faces on the hole boundary: those holding one of its half-edges.
+// The faces on the hole boundary: those holding one of its half-edges (a chord closing a part
+// of a complex hole has none).
 static std::vector<int> boundary_faces(const Mesh& mesh, const MeshTopology& topology,
                                        const BoundaryLoop& hole) {
   std::vector<int> faces;
   const size_t n = hole.vertices.size();
   for (size_t k = 0; k < n; ++k) {
-    const int a = hole.vertices[k], b = hole.vertices[(k + 1) % n];
-    for (int i = topology.faces_of_vertex_begin(a); i < topology.faces_of_vertex_end(a); ++i) {
-      const int face = topology.vertex_faces[i];
-      for (int corner = 0; corner < 3; ++corner) {
-        const int h = 3 * face + corner;
-        if (topology.halfedge_source(mesh, h) == a && topology.halfedge_target(mesh, h) == b &&
-            topology.opposite[h] == kBoundary) {
-          faces.push_back(face);
-        }
-      }
-    }
+    const int h = find_halfedge(mesh, topology, hole.vertices[k], hole.vertices[(k + 1) % n]);
+    if (h >= 0) faces.push_back(halfedge_face(h));
   }
   std::sort(faces.begin(), faces.end());
   faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
   return faces;
 }
 
-Projection best_projection(const Mesh& mesh, const MeshTopology& topology, const Zone& zone,
-                           const BoundaryLoop& hole, const ProjectionOptions& options) {
+ProjectionSearch find_projections(const Mesh& mesh, const MeshTopology& topology, const Zone& zone,
+                                  const BoundaryLoop& hole, const ProjectionOptions& options) {
   std::vector<Vec3> area_vectors;
   Vec3 vector_area = Vec3::Zero();
   for (int face : zone.faces) {
@@ -191,9 +161,19 @@ Projection best_projection(const Mesh& mesh, const MeshTopology& topology, const
   }
   std::stable_sort(candidates.begin(), candidates.end(), better);
 
-  Projection projection;
+  ProjectionSearch search;
+  search.best_frame.rotation = frame_axes(mesh, zone, candidates.front().direction);
+  for (int v : hole.vertices) search.best_frame.origin += mesh.positions[v];
+  search.best_frame.origin /= std::max<size_t>(1, hole.vertices.size());
   const std::vector<int> rim = boundary_faces(mesh, topology, hole);
+  const double separation = std::cos(options.min_separation_degrees * M_PI / 180);
   for (const Scored& candidate : candidates) {
+    if (static_cast<int>(search.planes.size()) == options.planes) break;
+    const bool too_close =
+        std::any_of(search.planes.begin(), search.planes.end(), [&](const Projection& p) {
+          return p.frame.normal().dot(candidate.direction) > separation;
+        });
+    if (too_close) continue;
     double rim_area = 0, rim_behind = 0;
     for (int face : rim) {
       const Vec3 cross = triangle_cross(mesh, face);
@@ -201,20 +181,13 @@ Projection best_projection(const Mesh& mesh, const MeshTopology& topology, const
       if (cross.dot(candidate.direction) <= 0) rim_behind += cross.norm();
     }
     if (rim_behind > options.max_rim_behind * rim_area) continue;
-    if (projection.orientations_tried++ == options.max_orientations) break;
-    Frame frame;
+    if (search.orientations_tried++ == options.max_orientations) break;
+    Frame frame = search.best_frame;
     frame.rotation = frame_axes(mesh, zone, candidate.direction);
-    for (int v : hole.vertices) frame.origin += mesh.positions[v];
-    frame.origin /= std::max<size_t>(1, hole.vertices.size());
     if (!is_simple_polygon(project_loop(mesh, hole, frame))) continue;
-    projection.frame = frame;
-    projection.projected_area = candidate.projected;
-    projection.folded_area = candidate.folded;
-    return projection;
+    search.planes.push_back({frame, candidate.projected, candidate.folded});
   }
-  projection.complex = true;
-  projection.frame.rotation = frame_axes(mesh, zone, best.direction);
-  return projection;
+  return search;
 }
 
 Zone visible_part(const Mesh& mesh, const MeshTopology& topology, const Zone& zone,

@@ -21,8 +21,6 @@ Vec3 RangeImage::local_point(int row, int col, double value) const {
 
 namespace {
 
-using Vec2 = Eigen::Vector2d;
-
 // Labels the pixels whose centres lie inside the polygon (even-odd rule) as hole pixels.
 void label_polygon_interior(const std::vector<Vec2>& polygon, RangeImage& image) {
   std::vector<double> crossings;
@@ -184,6 +182,28 @@ RangeImage rasterize_zone(const Mesh& mesh, const Zone& zone, const BoundaryLoop
     }
   }
   return image;
+}
+
+double rim_support(const RangeImage& image) {
+  const cv::Mat& labels = image.labels;
+  int border = 0, known = 0;
+  for (int row = 0; row < labels.rows; ++row) {
+    for (int col = 0; col < labels.cols; ++col) {
+      if (labels.at<std::uint8_t>(row, col) == kHolePixel) continue;
+      bool touches_hole = false;
+      for (int dr = -1; dr <= 1 && !touches_hole; ++dr) {
+        for (int dc = -1; dc <= 1 && !touches_hole; ++dc) {
+          const int r = row + dr, c = col + dc;
+          touches_hole = r >= 0 && r < labels.rows && c >= 0 && c < labels.cols &&
+                         labels.at<std::uint8_t>(r, c) == kHolePixel;
+        }
+      }
+      if (!touches_hole) continue;
+      ++border;
+      known += labels.at<std::uint8_t>(row, col) == kKnownPixel;
+    }
+  }
+  return border == 0 ? 1.0 : static_cast<double>(known) / border;
 }
 
 GapFillStats fill_small_gaps(RangeImage& image) {

@@ -11,6 +11,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include "rangefill/errors.h"
+#include "rangefill/geometry2d.h"
 
 namespace rangefill {
 
@@ -23,26 +24,6 @@ using FaceBase = CGAL::Constrained_triangulation_face_base_2<Kernel, FaceInfoBas
 using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 using Cdt =
     CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::No_constraint_intersection_tag>;
-using Vec2 = Eigen::Vector2d;
-
-double orient(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
-}
-
-// Closed segments ab and cd share a point (collinear overlaps included).
-bool segments_touch(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
-  auto within = [](const Vec2& p, const Vec2& q, const Vec2& r) {
-    return std::min(p.x(), q.x()) <= r.x() && r.x() <= std::max(p.x(), q.x()) &&
-           std::min(p.y(), q.y()) <= r.y() && r.y() <= std::max(p.y(), q.y());
-  };
-  const double o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a),
-               o4 = orient(c, d, b);
-  if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) {
-    return true;
-  }
-  return (o1 == 0 && within(a, b, c)) || (o2 == 0 && within(a, b, d)) ||
-         (o3 == 0 && within(c, d, a)) || (o4 == 0 && within(c, d, b));
-}
 
 // Nesting depth of every face: 0 outside all constraints, +1 across each constrained edge.
 void mark_nesting(Cdt& cdt) {
@@ -66,11 +47,7 @@ void mark_nesting(Cdt& cdt) {
 }
 
 bool mesh_has_edge(const Mesh& mesh, const MeshTopology& topology, int a, int b) {
-  for (int i = topology.faces_of_vertex_begin(a); i < topology.faces_of_vertex_end(a); ++i) {
-    const Triangle& t = mesh.triangles[topology.vertex_faces[i]];
-    if (t[0] == b || t[1] == b || t[2] == b) return true;
-  }
-  return false;
+  return find_halfedge(mesh, topology, a, b) >= 0 || find_halfedge(mesh, topology, b, a) >= 0;
 }
 
 [[noreturn]] void refuse(const BoundaryLoop& hole, const std::string& why) {

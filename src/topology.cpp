@@ -156,4 +156,17 @@ MeshTopology build_topology(const Mesh& mesh) {
   return topology;
 }
 
+int find_halfedge(const Mesh& mesh, const MeshTopology& topology, int from, int to) {
+  for (int i = topology.faces_of_vertex_begin(from); i < topology.faces_of_vertex_end(from); ++i) {
+    const int face = topology.vertex_faces[i];
+    for (int corner = 0; corner < 3; ++corner) {
+      const int h = 3 * face + corner;
+      if (topology.halfedge_source(mesh, h) == from && topology.halfedge_target(mesh, h) == to) {
+        return h;
+      }
+    }
+  }
+  return -1;
+}
+
 }  // namespace rangefill

@@ -1,11 +1,11 @@
 // Measuring a repair: distances between surfaces, closedness, self-intersections, edge ratio.
 #pragma once
 
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "rangefill/mesh.h"
-#include "rangefill/pipeline.h"
-#include "rangefill/punch.h"
 
 namespace rangefill {
 
@@ -37,6 +37,25 @@ struct ManifoldCheck {
 };
 ManifoldCheck check_manifold(const Mesh& mesh);
 
+/// The faces of a mesh in a bounding-volume tree (CGAL AABB tree) for intersection queries. Built
+/// once in O(F log F); const queries may run from several threads.
+class IntersectionIndex {
+ public:
+  explicit IntersectionIndex(const Mesh& mesh);
+  ~IntersectionIndex();
+  IntersectionIndex(IntersectionIndex&&) noexcept;
+  IntersectionIndex& operator=(IntersectionIndex&&) noexcept;
+
+  /// Faces that intersect the triangle (a, b, c), leaving out those that share a vertex with
+  /// `corners` (mesh vertex ids of the triangle's corners; -1 for a corner not in the mesh).
+  std::vector<int> intersecting_faces(const Vec3& a, const Vec3& b, const Vec3& c,
+                                      const Triangle& corners) const;
+
+ private:
+  struct Tree;
+  std::unique_ptr<Tree> tree_;
+};
+
 /// Pairs (f, g) with f in `faces` and g any face of the mesh, not sharing a vertex, whose triangles
 /// intersect. Each unordered pair is counted once.
 int count_self_intersections(const Mesh& mesh, const std::vector<int>& faces);
@@ -47,25 +66,5 @@ double mean_edge_length(const Mesh& mesh, const std::vector<int>& faces);
 /// The faces whose provenance is `hole` (or every generated face for kAnyHole).
 inline constexpr int kAnyHole = -2;
 std::vector<int> faces_of_hole(const Mesh& mesh, int hole);
-
-/// How well one punched hole was restored, distances in world units.
-struct HoleScore {
-  int hole = 0;     // index in PunchResult::holes
-  double area = 0;  // area of the removed faces
-  bool filled = false;
-  std::string failure;
-  SurfaceDistance distance;  // first = the patch, second = the removed faces
-  double edge_ratio = 0;     // mean patch edge / d_m
-  int new_vertices = 0;
-  int new_faces = 0;
-  double seconds = 0;
-};
-
-/// Scores a repair of `punched.mesh` against the faces removed from `original`: each punched hole
-/// is matched to the report of the loop it left, its patch to the generated faces with that
-/// report's id. Distances are sampled at spacing d_m / 4. Holes the repair did not attempt count as
-/// not filled.
-std::vector<HoleScore> score_repair(const Mesh& original, const PunchResult& punched,
-                                    const RepairResult& repaired, double mean_edge);
 
 }  // namespace rangefill

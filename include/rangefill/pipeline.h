@@ -10,9 +10,11 @@
 #include <opencv2/core.hpp>
 
 #include "rangefill/back_projection.h"
+#include "rangefill/complex_hole.h"
 #include "rangefill/holes.h"
 #include "rangefill/inpainter.h"
 #include "rangefill/mesh.h"
+#include "rangefill/metrics.h"
 #include "rangefill/projection.h"
 #include "rangefill/range_image.h"
 #include "rangefill/stitch.h"
@@ -34,6 +36,7 @@ struct HoleReport {
   cv::Size image_size;
   int masked_pixels = 0;
   int gap_pixels = 0;
+  double rim_support = 0;             // of the image used (range_image.h)
   TrendKind trend = TrendKind::none;  // the trend actually fitted (after fallbacks)
   int new_vertices = 0;
   int new_faces = 0;
@@ -41,7 +44,8 @@ struct HoleReport {
   double inpainting_seconds = 0;  // of which the back-end
   std::vector<int> other_holes;   // other loops the zone reached
   bool filled = false;
-  std::string failure;  // why not, when not filled
+  bool partial = false;  // a part of the hole was filled (Section VI-C); the rest is a new hole
+  std::string failure;   // why not, when not filled
 };
 
 /// Everything a person needs to look at one hole's images (see RepairOptions::on_images).
@@ -59,7 +63,9 @@ struct RepairOptions {
   /// around the hole (a cap of a sphere came back below its cutting plane); the back-end then only
   /// restores the residual. `none` is the paper's pipeline, for ablations.
   TrendKind trend = TrendKind::quadric;
-  double trend_ring = 3;  // known pixels within this many pixels of the hole are fitted
+  double min_rim_support = 0.9;  // a plane whose image sees less of the hole's surroundings
+                                 // (rim_support after gap filling) gives way to the next
+  double trend_ring = 3;         // known pixels within this many pixels of the hole are fitted
   ZoneOptions zone;
   ProjectionOptions projection;
   RangeImageOptions image;
@@ -69,7 +75,7 @@ struct RepairOptions {
                                     // component: the outer border of an open scan
   int max_hole_edges = 0;           // loops with more boundary edges are left open; 0 = no limit
   double max_hole_area = 0;         // loops with a larger area are left open; 0 = no limit
-  int passes = 3;                   // rounds of detect–fill–merge (Section IX)
+  int passes = 8;   // rounds of detect–fill–merge (Section IX); complex holes take one per part
   int threads = 1;  // holes of a pass are independent; the result does not depend on it
   std::function<void(const HoleReport&)> on_hole;    // after each hole (any thread, serialised)
   std::function<void(const HoleImages&)> on_images;  // after each inpainting (serialised)
@@ -85,12 +91,24 @@ struct RepairResult {
   std::vector<int> skipped_borders;  // input loops left open by skip_longest_loops
 };
 
-/// Fills one hole of `mesh` (Sections V–VIII). Reads the mesh only; safe to call concurrently.
+/// What every hole of a pass reads: the mesh and what is derived from it once per pass.
+struct SurfaceContext {
+  /// `mean_edge`: the d_m to use; 0 takes this mesh's.
+  SurfaceContext(const Mesh& mesh, double mean_edge);
+  const Mesh& mesh;
+  MeshTopology topology;
+  HoleSet holes;
+  std::vector<Vec3> normals;  // area-weighted, from the faces
+  double mean_edge;           // d_m
+  IntersectionIndex faces;    // for refusing fills that would cut through the surface
+};
+
+/// Fills one hole (Sections V–VIII). Reads `surface` only; safe to call concurrently.
 /// `report` receives the figures of the stages it reached. Throws ProcessingError when the hole
-/// cannot be filled (complex boundary, empty image, stitching refused).
-Fill fill_hole(const Mesh& mesh, const MeshTopology& topology, const HoleSet& holes,
-               const BoundaryLoop& hole, const std::vector<Vec3>& vertex_normals, double mean_edge,
-               const Inpainter& inpainter, const RepairOptions& options, HoleReport& report);
+/// cannot be filled: complex boundary, empty image, stitching refused, or a fill triangle that
+/// would intersect the surface or the fill itself.
+Fill fill_hole(const SurfaceContext& surface, const BoundaryLoop& hole, const Inpainter& inpainter,
+               const RepairOptions& options, HoleReport& report);
 
 /// Appends a fill to the mesh with provenance `hole_id` (Section IX, eq. 16) and returns its row
 /// of the restoration matrix (vertices, edges, faces added).

@@ -53,6 +53,10 @@ RangeImage rasterize_zone(const Mesh& mesh, const Zone& zone, const BoundaryLoop
                           const Frame& frame, double mean_edge,
                           const RangeImageOptions& options = {});
 
+/// Share of the pixels bordering the hole mask (its 8-neighbours outside it) that hold depth from
+/// the zone: how much of the hole's surroundings the image actually sees. 1 for an empty mask.
+double rim_support(const RangeImage& image);
+
 struct GapFillStats {
   int areas = 0;           // gap areas filled
   int pixels = 0;          // pixels filled

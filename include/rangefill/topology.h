@@ -56,4 +56,8 @@ struct MeshTopology {
 /// Builds the adjacency. Precondition: validate_mesh(mesh) passes.
 MeshTopology build_topology(const Mesh& mesh);
 
+/// The half-edge from vertex `from` to vertex `to` (the first in face order), or -1 if no face
+/// has it. O(valence).
+int find_halfedge(const Mesh& mesh, const MeshTopology& topology, int from, int to);
+
 }  // namespace rangefill

@@ -10,7 +10,7 @@
 
 #include "cli.h"
 #include "rangefill/errors.h"
-#include "rangefill/metrics.h"
+#include "rangefill/evaluation.h"
 #include "rangefill/pipeline.h"
 #include "rangefill/punch.h"
 

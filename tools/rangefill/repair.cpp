@@ -74,6 +74,8 @@ nlohmann::json report_json(const RepairCommand& command, const RepairResult& res
                      {"inpainting_seconds", hole.inpainting_seconds},
                      {"other_holes", hole.other_holes},
                      {"filled", hole.filled},
+                     {"partial", hole.partial},
+                     {"rim_support", hole.rim_support},
                      {"failure", hole.failure}});
   }
   return {{"input", command.input},
@@ -95,7 +97,8 @@ void print_summary(const RepairResult& result) {
         std::to_string(hole.image_size.width) + "x" + std::to_string(hole.image_size.height);
     std::printf("%5d %4d %9d %4d %11s %7d %8d %8.3f  %s\n", hole.id, hole.pass,
                 hole.boundary_vertices, hole.rings, size.c_str(), hole.masked_pixels,
-                hole.new_vertices, hole.seconds, hole.filled ? "filled" : hole.failure.c_str());
+                hole.new_vertices, hole.seconds,
+                hole.filled ? (hole.partial ? "filled a part" : "filled") : hole.failure.c_str());
   }
 }
 

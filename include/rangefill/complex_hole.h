@@ -1,0 +1,31 @@
+// Complex holes (Pérez et al., Section VI-C, Figs. 10–13): a hole that no plane sees whole is
+// filled in parts. A part is a run of the hole's boundary closed by a chord between its two ends;
+// once it is filled, the rest of the hole (the other run and the chord) is a new, smaller hole that
+// the next pass projects on a plane of its own.
+#pragma once
+
+#include <vector>
+
+#include "rangefill/holes.h"
+#include "rangefill/mesh.h"
+#include "rangefill/projection.h"
+#include "rangefill/topology.h"
+
+namespace rangefill {
+
+/// Sub-holes of `hole` to fill first, most promising first, seen through `frame` (the hole's best
+/// plane even though no plane was acceptable). Each is a run of hole.vertices (in loop order)
+/// whose closing chord is not an edge of the mesh, with at least 3 vertices and fewer than the
+/// hole.
+///  - Where the projected boundary self-intersects (Fig. 12): the polygon is cut at an intersection
+///    into two loops; the larger of those that are a single run is kept and cut again until it
+///    projects as a simple polygon.
+///  - Where it projects simply but parts of its rim are seen from behind: the longest run of
+///    boundary edges whose rim faces face the viewer.
+std::vector<BoundaryLoop> split_complex_hole(const Mesh& mesh, const MeshTopology& topology,
+                                             const BoundaryLoop& hole, const Frame& frame);
+
+/// A loop over `vertices` with perimeter and vector area computed, the chord included.
+BoundaryLoop make_loop(const Mesh& mesh, int id, std::vector<int> vertices);
+
+}  // namespace rangefill
