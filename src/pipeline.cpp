@@ -13,6 +13,7 @@
 
 #include "rangefill/complex_hole.h"
 #include "rangefill/errors.h"
+#include "rangefill/front.h"
 
 namespace rangefill {
 
@@ -129,57 +130,98 @@ SurfaceContext::SurfaceContext(const Mesh& surface_mesh, double mean_edge_length
                                      : rangefill::mean_edge_length(surface_mesh, topology)),
       faces(surface_mesh) {}
 
-Fill fill_hole(const SurfaceContext& surface, const BoundaryLoop& hole, const Inpainter& inpainter,
-               const RepairOptions& options, HoleReport& report) {
+namespace {
+
+// Sections VI–VIII on the best plane, the next ones, then on parts of a complex hole (VI-C).
+std::optional<Fill> fill_through_planes(const SurfaceContext& surface, const BoundaryLoop& hole,
+                                        const Zone& zone, const Inpainter& inpainter,
+                                        const RepairOptions& options, HoleReport& report,
+                                        std::string& failure) {
   const Mesh& mesh = surface.mesh;
-  const MeshTopology& topology = surface.topology;
-  const double mean_edge = surface.mean_edge;
-  const Clock::time_point start = Clock::now();
-  const std::string name = "hole " + std::to_string(hole.id);
-  report.boundary_vertices = static_cast<int>(hole.vertices.size());
-  report.area = hole.area;
-
-  const Zone zone =
-      grow_zone(mesh, topology, surface.holes, hole, surface.normals, mean_edge, options.zone);
-  report.rings = zone.rings;
-  report.zone_faces = static_cast<int>(zone.faces.size());
-  report.other_holes = zone.other_holes;
-  if (zone.faces.empty()) throw ProcessingError(name + ": the zone of interest is empty");
-
-  // The best plane first; a plane whose fill is refused gives way to the next. A hole that no
-  // plane fills whole is filled in part (Section VI-C); the next pass sees the rest.
-  const ProjectionSearch search = find_projections(mesh, topology, zone, hole, options.projection);
-  std::string first_failure;
+  const ProjectionSearch search =
+      find_projections(mesh, surface.topology, zone, hole, options.projection);
   auto try_planes = [&](const BoundaryLoop& loop, const std::vector<Projection>& planes) {
     for (const Projection& projection : planes) {
       try {
         return std::optional<Fill>(
             fill_through_plane(surface, loop, zone, projection.frame, inpainter, options, report));
       } catch (const ProcessingError& error) {
-        if (first_failure.empty()) first_failure = error.what();
+        if (failure.empty()) failure = error.what();
       }
     }
     return std::optional<Fill>();
   };
   std::optional<Fill> fill = try_planes(hole, search.planes);
-  if (!fill) {
-    for (const BoundaryLoop& part : split_complex_hole(mesh, topology, hole, search.best_frame)) {
-      fill =
-          try_planes(part, find_projections(mesh, topology, zone, part, options.projection).planes);
-      if (fill) {
-        report.partial = true;
-        break;
-      }
+  if (fill) return fill;
+  for (const BoundaryLoop& part :
+       split_complex_hole(mesh, surface.topology, hole, search.best_frame)) {
+    fill = try_planes(
+        part, find_projections(mesh, surface.topology, zone, part, options.projection).planes);
+    if (fill) {
+      report.method = "plane, in part";
+      return fill;
     }
   }
-  if (!fill) {
-    throw ProcessingError(first_failure.empty()
-                              ? name + ": complex hole: no plane tried (" +
-                                    std::to_string(search.orientations_tried) +
-                                    ") sees its rim from the front with a simple boundary, "
-                                    "nor one of its parts (Section VI-C)"
-                              : first_failure);
+  if (failure.empty()) {
+    failure = "hole " + std::to_string(hole.id) + ": complex hole: no plane tried (" +
+              std::to_string(search.orientations_tried) +
+              ") sees its rim from the front with a simple boundary, nor one of its parts "
+              "(Section VI-C)";
   }
+  return std::nullopt;
+}
+
+// Tekumalla & Cohen: the advancing front over an MLS surface of the zone's vertices.
+Fill fill_through_front(const SurfaceContext& surface, const BoundaryLoop& hole, const Zone& zone,
+                        const RepairOptions& options) {
+  std::vector<Vec3> samples, normals;
+  for (int v : zone.vertices) {
+    samples.push_back(surface.mesh.positions[v]);
+    normals.push_back(surface.normals[v]);
+  }
+  Fill fill =
+      fill_by_front(surface.mesh, surface.topology, hole,
+                    MlsSurface(std::move(samples), std::move(normals), options.mls), options.front);
+  validate_fill(surface.mesh, surface.topology, hole, fill);
+  if (fill_intersects(surface, fill)) {
+    throw ProcessingError("hole " + std::to_string(hole.id) +
+                          ": the front's fill would intersect the surface or itself");
+  }
+  return fill;
+}
+
+}  // namespace
+
+Fill fill_hole(const SurfaceContext& surface, const BoundaryLoop& hole, const Inpainter& inpainter,
+               const RepairOptions& options, HoleReport& report) {
+  const Clock::time_point start = Clock::now();
+  const std::string name = "hole " + std::to_string(hole.id);
+  report.boundary_vertices = static_cast<int>(hole.vertices.size());
+  report.area = hole.area;
+
+  const Zone zone = grow_zone(surface.mesh, surface.topology, surface.holes, hole, surface.normals,
+                              surface.mean_edge, options.zone);
+  report.rings = zone.rings;
+  report.zone_faces = static_cast<int>(zone.faces.size());
+  report.other_holes = zone.other_holes;
+  if (zone.faces.empty()) throw ProcessingError(name + ": the zone of interest is empty");
+
+  std::string failure;
+  std::optional<Fill> fill;
+  if (options.filler == Filler::plane) {
+    report.method = "plane";
+    fill = fill_through_planes(surface, hole, zone, inpainter, options, report, failure);
+  }
+  if (!fill && (options.filler == Filler::front || options.fallback_front)) {
+    try {
+      report.method = "front";
+      fill = fill_through_front(surface, hole, zone, options);
+    } catch (const ProcessingError& error) {
+      failure += (failure.empty() ? "" : "; ") + std::string(error.what());
+    }
+  }
+  if (!fill) throw ProcessingError(failure);
+  report.partial = report.method == "plane, in part";
   report.new_vertices = static_cast<int>(fill->points.size());
   report.new_faces = static_cast<int>(fill->triangles.size());
   report.filled = true;

@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <deque>
+#include <limits>
 #include <map>
+#include <set>
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -54,9 +56,10 @@ bool mesh_has_edge(const Mesh& mesh, const MeshTopology& topology, int a, int b)
   throw ProcessingError("hole " + std::to_string(hole.id) + ": stitching failed: " + why);
 }
 
-// The checks promised in stitch.h, on fill-vertex triangles.
-void check_fill(const Mesh& mesh, const MeshTopology& topology, const BoundaryLoop& hole,
-                const Frame& frame, const Fill& fill) {
+}  // namespace
+
+void validate_fill(const Mesh& mesh, const MeshTopology& topology, const BoundaryLoop& hole,
+                   const Fill& fill, const Frame* frame) {
   const int boundary_size = static_cast<int>(fill.boundary.size());
   auto position = [&](int id) -> const Vec3& {
     return id < boundary_size ? mesh.positions[fill.boundary[id]] : fill.points[id - boundary_size];
@@ -64,7 +67,9 @@ void check_fill(const Mesh& mesh, const MeshTopology& topology, const BoundaryLo
   std::map<std::pair<int, int>, int> directed;
   for (const Triangle& t : fill.triangles) {
     const Vec3 cross = (position(t[1]) - position(t[0])).cross(position(t[2]) - position(t[0]));
-    if (!(cross.dot(frame.normal()) > 0)) refuse(hole, "a triangle is degenerate or flipped");
+    if (!(cross.norm() > 0) || (frame && !(cross.dot(frame->normal()) > 0))) {
+      refuse(hole, "a triangle is degenerate or flipped");
+    }
     for (int k = 0; k < 3; ++k) {
       if (++directed[{t[k], t[(k + 1) % 3]}] > 1)
         refuse(hole, "an edge is used twice in one direction");
@@ -90,7 +95,50 @@ void check_fill(const Mesh& mesh, const MeshTopology& topology, const BoundaryLo
   }
 }
 
-}  // namespace
+std::vector<Triangle> triangulate_hole_polygon(const std::vector<Vec3>& loop,
+                                               const std::set<std::pair<int, int>>& forbidden) {
+  const int n = static_cast<int>(loop.size());
+  if (n < 3) return {};
+  if (n == 3) return {{2, 1, 0}};
+  // Minimal-area triangulation by dynamic programming over the polygon (Barequet–Sharir; the
+  // area weight of Liepa 2003): area[i][j] is the least area closing the sub-polygon i..j.
+  const double infinity = std::numeric_limits<double>::infinity();
+  std::vector<double> area(static_cast<size_t>(n) * n, infinity);
+  std::vector<int> split(static_cast<size_t>(n) * n, -1);
+  auto at = [n](int i, int j) { return static_cast<size_t>(i) * n + j; };
+  auto allowed = [&](int i, int j) {
+    return j == i + 1 || (i == 0 && j == n - 1) ||
+           !forbidden.count({std::min(i, j), std::max(i, j)});
+  };
+  for (int i = 0; i + 1 < n; ++i) area[at(i, i + 1)] = 0;
+  for (int length = 2; length < n; ++length) {
+    for (int i = 0; i + length < n; ++i) {
+      const int j = i + length;
+      if (!allowed(i, j)) continue;
+      for (int k = i + 1; k < j; ++k) {
+        const double candidate = area[at(i, k)] + area[at(k, j)] +
+                                 0.5 * (loop[k] - loop[i]).cross(loop[j] - loop[i]).norm();
+        if (candidate < area[at(i, j)]) {
+          area[at(i, j)] = candidate;
+          split[at(i, j)] = k;
+        }
+      }
+    }
+  }
+  if (!(area[at(0, n - 1)] < infinity)) return {};
+  std::vector<Triangle> triangles;
+  std::vector<std::pair<int, int>> stack = {{0, n - 1}};
+  while (!stack.empty()) {
+    const auto [i, j] = stack.back();
+    stack.pop_back();
+    if (j - i < 2) continue;
+    const int k = split[at(i, j)];
+    triangles.push_back({j, k, i});  // holds k → i and j → k: the loop's edges reversed
+    stack.emplace_back(i, k);
+    stack.emplace_back(k, j);
+  }
+  return triangles;
+}
 
 std::vector<Triangle> triangulate_grid(const Patch& patch) {
   std::vector<Triangle> triangles;
@@ -195,7 +243,7 @@ Fill stitch(const Mesh& mesh, const MeshTopology& topology, const BoundaryLoop& 
     }
   }
   fill.triangles = std::move(triangles);
-  check_fill(mesh, topology, hole, frame, fill);
+  validate_fill(mesh, topology, hole, fill, &frame);
   return fill;
 }
 

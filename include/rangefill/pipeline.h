@@ -11,6 +11,7 @@
 
 #include "rangefill/back_projection.h"
 #include "rangefill/complex_hole.h"
+#include "rangefill/front.h"
 #include "rangefill/holes.h"
 #include "rangefill/inpainter.h"
 #include "rangefill/mesh.h"
@@ -44,6 +45,7 @@ struct HoleReport {
   double inpainting_seconds = 0;  // of which the back-end
   std::vector<int> other_holes;   // other loops the zone reached
   bool filled = false;
+  std::string method;    // "plane", "plane, in part" or "front"
   bool partial = false;  // a part of the hole was filled (Section VI-C); the rest is a new hole
   std::string failure;   // why not, when not filled
 };
@@ -55,7 +57,15 @@ struct HoleImages {
   const cv::Mat& restored;
 };
 
+/// How holes are filled: through range images on projection planes (the Pérez pipeline), or by
+/// the advancing front (Tekumalla & Cohen).
+enum class Filler { plane, front };
+
 struct RepairOptions {
+  Filler filler = Filler::plane;
+  bool fallback_front = true;  // holes the planes cannot fill go to the advancing front
+  FrontOptions front;
+  MlsOptions mls;
   std::string inpainter = "ns";
   InpainterOptions inpainting;
   /// Trend removed before inpainting and added back (trend.h). Quadric by default: OpenCV's telea
@@ -103,10 +113,11 @@ struct SurfaceContext {
   IntersectionIndex faces;    // for refusing fills that would cut through the surface
 };
 
-/// Fills one hole (Sections V–VIII). Reads `surface` only; safe to call concurrently.
-/// `report` receives the figures of the stages it reached. Throws ProcessingError when the hole
-/// cannot be filled: complex boundary, empty image, stitching refused, or a fill triangle that
-/// would intersect the surface or the fill itself.
+/// Fills one hole. With Filler::plane: Sections V–VIII on the best acceptable plane, else the next
+/// ones, else a part of the hole (VI-C, the rest is left to the next pass); then, if allowed, the
+/// advancing front. Reads `surface` only; safe to call concurrently. `report` receives the figures
+/// of the stages it reached. Throws ProcessingError with the reasons when no filler succeeds (a
+/// fill is refused when it would not be manifold or would intersect the surface or itself).
 Fill fill_hole(const SurfaceContext& surface, const BoundaryLoop& hole, const Inpainter& inpainter,
                const RepairOptions& options, HoleReport& report);
 

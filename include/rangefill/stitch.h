@@ -2,6 +2,8 @@
 // VIII).
 #pragma once
 
+#include <set>
+#include <utility>
 #include <vector>
 
 #include "rangefill/back_projection.h"
@@ -26,14 +28,27 @@ struct Fill {
   std::vector<Triangle> triangles;
 };
 
+/// The triangulation of the closed polygon `loop` (3D) of least total area (Barequet–Sharir
+/// dynamic programming, O(n³); the area weight of Liepa 2003) that uses none of the `forbidden`
+/// chords (pairs of positions in `loop`, smaller first). Triangles index `loop` and use each edge
+/// (k, k+1) reversed, as the fill of a hole traced like `loop` does. Empty when none exists.
+/// CGAL's triangulate_hole_polyline does the same without forbidden chords, which a front that
+/// touches itself needs.
+std::vector<Triangle> triangulate_hole_polygon(const std::vector<Vec3>& loop,
+                                               const std::set<std::pair<int, int>>& forbidden = {});
+
+/// Throws ProcessingError (naming the hole) unless the fill joins the mesh as a manifold: each
+/// boundary edge used exactly once, reversed; every other edge used twice in opposite directions;
+/// no chord between boundary vertices that the mesh already has as an edge; no triangle of zero
+/// area, nor, given a frame, one seen from behind.
+void validate_fill(const Mesh& mesh, const MeshTopology& topology, const BoundaryLoop& hole,
+                   const Fill& fill, const Frame* frame = nullptr);
+
 /// T2 and the union: drops grid triangles that cross or touch the projected hole boundary, then
 /// triangulates the band between the boundary and the grid's border by a constrained Delaunay
 /// triangulation in the projection plane (2.5D, CGAL) that keeps every boundary edge and every
-/// border edge, and returns T1 ∪ T2 with unused points removed. Throws ProcessingError (naming the
-/// hole) when the result would not join the mesh as a manifold: a boundary edge not used exactly
-/// once in the right direction, an edge used twice in one direction, a chord between boundary
-/// vertices that the mesh already has as an edge, or a triangle that is degenerate or seen from
-/// behind.
+/// border edge, and returns T1 ∪ T2 with unused points removed, checked by validate_fill with the
+/// frame.
 Fill stitch(const Mesh& mesh, const MeshTopology& topology, const BoundaryLoop& hole,
             const Frame& frame, const Patch& patch, const std::vector<Triangle>& grid);
 
