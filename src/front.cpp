@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <set>
 #include <unordered_map>
 
 #include "rangefill/errors.h"
 #include "rangefill/geometry2d.h"
+#include "rangefill/metrics.h"
 
 namespace rangefill {
 
@@ -17,9 +19,9 @@ namespace {
 // surface on the left of each edge), with the fill's positions and triangles.
 class Front {
  public:
-  Front(const Mesh& mesh, const MeshTopology& topology, const BoundaryLoop& hole,
-        MlsSurface surface, const FrontOptions& options)
-      : hole_(hole), surface_(std::move(surface)), options_(options) {
+  Front(const Mesh& mesh, const MeshTopology& topology, const IntersectionIndex& faces,
+        const BoundaryLoop& hole, MlsSurface surface, const FrontOptions& options)
+      : faces_(faces), hole_(hole), surface_(std::move(surface)), options_(options) {
     const int n = static_cast<int>(hole.vertices.size());
     for (int k = 0; k < n; ++k) {
       positions_.push_back(mesh.positions[hole.vertices[k]]);
@@ -136,6 +138,36 @@ class Front {
     return true;
   }
 
+  // Whether the triangle over fill vertices (a, b, c) (c may be -1 with position `c_position`)
+  // meets neither the mesh nor an earlier fill triangle, except where they share a vertex.
+  bool free_in_space(int a, int b, const Vec3& c_position, int c) const {
+    const std::array<Vec3, 3> candidate = {positions_[a], positions_[b], c_position};
+    const int boundary_size = static_cast<int>(hole_.vertices.size());
+    auto mesh_id = [&](int v) { return v >= 0 && v < boundary_size ? hole_.vertices[v] : -1; };
+    if (!faces_
+             .intersecting_faces(candidate[0], candidate[1], candidate[2],
+                                 {mesh_id(a), mesh_id(b), mesh_id(c)})
+             .empty()) {
+      return false;
+    }
+    const Vec3 centre = (candidate[0] + candidate[1] + candidate[2]) / 3;
+    const double reach = std::max({(candidate[0] - centre).norm(), (candidate[1] - centre).norm(),
+                                   (candidate[2] - centre).norm()});
+    for (const Triangle& t : triangles_) {
+      if (std::any_of(t.begin(), t.end(), [&](int v) { return v == a || v == b || v == c; })) {
+        continue;
+      }
+      const std::array<Vec3, 3> other = {positions_[t[0]], positions_[t[1]], positions_[t[2]]};
+      const Vec3 other_centre = (other[0] + other[1] + other[2]) / 3;
+      const double other_reach =
+          std::max({(other[0] - other_centre).norm(), (other[1] - other_centre).norm(),
+                    (other[2] - other_centre).norm()});
+      if ((centre - other_centre).norm() > reach + other_reach) continue;
+      if (triangles_intersect(candidate, other)) return false;
+    }
+    return true;
+  }
+
   // make-convex: clip the front vertex of smallest hole angle below φ whose ear is clear, again
   // and again.
   bool make_convex(double phi) {
@@ -152,7 +184,8 @@ class Front {
       int clipped = -1;
       for (const auto& [angle, v] : ears) {
         if (!has_edge(prev_[v], next_[v]) &&
-            clear_in_local_plane(next_[v], v, positions_[prev_[v]], prev_[v])) {
+            clear_in_local_plane(next_[v], v, positions_[prev_[v]], prev_[v]) &&
+            free_in_space(next_[v], v, positions_[prev_[v]], prev_[v])) {
           clipped = v;
           break;
         }
@@ -192,6 +225,7 @@ class Front {
       if (!projected || !projected->point.allFinite()) continue;
       if (too_close_to_front(projected->point, a, b, 0.4 * edge_length_ * depth_scale)) continue;
       if (!clear_in_local_plane(b, a, projected->point, -1)) continue;
+      if (!free_in_space(b, a, projected->point, -1)) continue;
       const int p = static_cast<int>(positions_.size());
       positions_.push_back(projected->point);
       normals_.push_back(projected->normal.dot(plane.normal) >= 0 ? projected->normal
@@ -215,7 +249,8 @@ class Front {
     return progress;
   }
 
-  // The rest of the front in one go: the least-area triangulation avoiding the fill's edges.
+  // The rest of the front in one go: ear clipping in the plane of its Newell normal, or else the
+  // least-area triangulation; the first whose triangles are new edges and free in space.
   void close_front() {
     std::vector<int> ring;
     for (int v = first_on_front(), k = 0; k < size_; v = next_[v], ++k) ring.push_back(v);
@@ -227,10 +262,69 @@ class Front {
         if (has_edge(ring[i], ring[j])) forbidden.emplace(i, j);
       }
     }
-    const std::vector<Triangle> cap = triangulate_hole_polygon(polygon, forbidden);
-    if (cap.empty())
+    std::vector<int> order(size_);
+    std::iota(order.begin(), order.end(), 0);
+    std::vector<Triangle> ears = triangulate_polygon(polygon, order);
+    for (Triangle& t : ears) std::swap(t[1], t[2]);  // the front's edges reversed
+    for (const std::vector<Triangle>& cap : {ears, triangulate_hole_polygon(polygon, forbidden)}) {
+      const size_t kept = triangles_.size();
+      const std::set<std::pair<int, int>> edges = edges_;
+      bool valid = !cap.empty();
+      for (const Triangle& t : cap) {
+        const Triangle triangle = {ring[t[0]], ring[t[1]], ring[t[2]]};
+        for (int k = 0; k < 3 && valid; ++k) {
+          const int a = triangle[k], b = triangle[(k + 1) % 3];
+          valid = next_[a] == b || next_[b] == a || !edges.count({std::min(a, b), std::max(a, b)});
+        }
+        valid =
+            valid && free_in_space(triangle[0], triangle[1], positions_[triangle[2]], triangle[2]);
+        if (!valid) break;
+        add_triangle(triangle);
+      }
+      if (valid) return;
+      triangles_.resize(kept);
+      edges_ = edges;
+    }
+    if (!clip_ears_in_space()) {
       fail("the last " + std::to_string(size_) + " front vertices could not be closed");
-    for (const Triangle& t : cap) triangles_.push_back({ring[t[0]], ring[t[1]], ring[t[2]]});
+    }
+  }
+
+  // Greedy ear clipping by the smallest angle in space, each ear a new edge and free in space:
+  // for a small front twisted too much for a plane. False if it gets stuck.
+  bool clip_ears_in_space() {
+    while (size_ > 3) {
+      int best = -1;
+      double best_angle = M_PI;
+      for (int v = 0; v < static_cast<int>(on_front_.size()); ++v) {
+        if (!on_front_[v]) continue;
+        const Vec3 to_prev = positions_[prev_[v]] - positions_[v];
+        const Vec3 to_next = positions_[next_[v]] - positions_[v];
+        const double angle = std::atan2(to_prev.cross(to_next).norm(), to_prev.dot(to_next));
+        if (angle < best_angle && !has_edge(prev_[v], next_[v]) &&
+            free_in_space(next_[v], v, positions_[prev_[v]], prev_[v])) {
+          best = v;
+          best_angle = angle;
+        }
+      }
+      if (best < 0) return false;
+      const int u = prev_[best], w = next_[best];
+      add_triangle({w, best, u});
+      next_[u] = w;
+      prev_[w] = u;
+      on_front_[best] = 0;
+      --size_;
+    }
+    return close_triangle();
+  }
+
+  // The last three front vertices a→b→c as the triangle (c, b, a), if it is free in space.
+  bool close_triangle() {
+    const int a = first_on_front(), b = next_[a], c = next_[b];
+    if (has_edge(a, c) && next_[c] != a) return false;
+    if (!free_in_space(c, b, positions_[a], a)) return false;
+    add_triangle({c, b, a});
+    return true;
   }
 
   void add_edge(int a, int b) { edges_.emplace(std::min(a, b), std::max(a, b)); }
@@ -256,6 +350,7 @@ class Front {
     return false;
   }
 
+  const IntersectionIndex& faces_;
   const BoundaryLoop& hole_;
   MlsSurface surface_;
   const FrontOptions& options_;
@@ -271,12 +366,12 @@ class Front {
 
 }  // namespace
 
-Fill fill_by_front(const Mesh& mesh, const MeshTopology& topology, const BoundaryLoop& hole,
-                   MlsSurface surface, const FrontOptions& options) {
+Fill fill_by_front(const Mesh& mesh, const MeshTopology& topology, const IntersectionIndex& faces,
+                   const BoundaryLoop& hole, MlsSurface surface, const FrontOptions& options) {
   if (hole.vertices.size() < 3) {
     throw ProcessingError("hole " + std::to_string(hole.id) + ": fewer than 3 boundary vertices");
   }
-  return Front(mesh, topology, hole, std::move(surface), options).run();
+  return Front(mesh, topology, faces, hole, std::move(surface), options).run();
 }
 
 }  // namespace rangefill

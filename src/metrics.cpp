@@ -141,6 +141,13 @@ std::vector<int> IntersectionIndex::intersecting_faces(const Vec3& a, const Vec3
   return faces;
 }
 
+bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b) {
+  const CgalTriangle first(to_point(a[0]), to_point(a[1]), to_point(a[2]));
+  const CgalTriangle second(to_point(b[0]), to_point(b[1]), to_point(b[2]));
+  if (first.is_degenerate() || second.is_degenerate()) return false;
+  return CGAL::do_intersect(first, second);
+}
+
 int count_self_intersections(const Mesh& mesh, const std::vector<int>& faces) {
   const IntersectionIndex index(mesh);
   const std::set<int> queried(faces.begin(), faces.end());

@@ -132,41 +132,35 @@ SurfaceContext::SurfaceContext(const Mesh& surface_mesh, double mean_edge_length
 
 namespace {
 
-// Sections VI–VIII on the best plane, the next ones, then on parts of a complex hole (VI-C).
-std::optional<Fill> fill_through_planes(const SurfaceContext& surface, const BoundaryLoop& hole,
-                                        const Zone& zone, const Inpainter& inpainter,
-                                        const RepairOptions& options, HoleReport& report,
-                                        std::string& failure) {
-  const Mesh& mesh = surface.mesh;
-  const ProjectionSearch search =
-      find_projections(mesh, surface.topology, zone, hole, options.projection);
-  auto try_planes = [&](const BoundaryLoop& loop, const std::vector<Projection>& planes) {
-    for (const Projection& projection : planes) {
-      try {
-        return std::optional<Fill>(
-            fill_through_plane(surface, loop, zone, projection.frame, inpainter, options, report));
-      } catch (const ProcessingError& error) {
-        if (failure.empty()) failure = error.what();
-      }
-    }
-    return std::optional<Fill>();
-  };
-  std::optional<Fill> fill = try_planes(hole, search.planes);
-  if (fill) return fill;
-  for (const BoundaryLoop& part :
-       split_complex_hole(mesh, surface.topology, hole, search.best_frame)) {
-    fill = try_planes(
-        part, find_projections(mesh, surface.topology, zone, part, options.projection).planes);
-    if (fill) {
-      report.method = "plane, in part";
-      return fill;
+// Sections VI–VIII on each plane in turn; the first fill accepted wins, the first refusal is kept.
+std::optional<Fill> fill_through_planes(const SurfaceContext& surface, const BoundaryLoop& loop,
+                                        const Zone& zone, const std::vector<Projection>& planes,
+                                        const Inpainter& inpainter, const RepairOptions& options,
+                                        HoleReport& report, std::string& failure) {
+  for (const Projection& projection : planes) {
+    try {
+      return fill_through_plane(surface, loop, zone, projection.frame, inpainter, options, report);
+    } catch (const ProcessingError& error) {
+      if (failure.empty()) failure = error.what();
     }
   }
-  if (failure.empty()) {
-    failure = "hole " + std::to_string(hole.id) + ": complex hole: no plane tried (" +
-              std::to_string(search.orientations_tried) +
-              ") sees its rim from the front with a simple boundary, nor one of its parts "
-              "(Section VI-C)";
+  return std::nullopt;
+}
+
+// Section VI-C: a part of a complex hole, through the planes of that part.
+std::optional<Fill> fill_part_through_planes(const SurfaceContext& surface,
+                                             const BoundaryLoop& hole, const Zone& zone,
+                                             const Frame& best_frame, const Inpainter& inpainter,
+                                             const RepairOptions& options, HoleReport& report,
+                                             std::string& failure) {
+  for (const BoundaryLoop& part :
+       split_complex_hole(surface.mesh, surface.topology, hole, best_frame)) {
+    const std::vector<Projection> planes =
+        find_projections(surface.mesh, surface.topology, zone, part, options.projection).planes;
+    if (auto fill =
+            fill_through_planes(surface, part, zone, planes, inpainter, options, report, failure)) {
+      return fill;
+    }
   }
   return std::nullopt;
 }
@@ -180,12 +174,41 @@ Fill fill_through_front(const SurfaceContext& surface, const BoundaryLoop& hole,
     normals.push_back(surface.normals[v]);
   }
   Fill fill =
-      fill_by_front(surface.mesh, surface.topology, hole,
+      fill_by_front(surface.mesh, surface.topology, surface.faces, hole,
                     MlsSurface(std::move(samples), std::move(normals), options.mls), options.front);
   validate_fill(surface.mesh, surface.topology, hole, fill);
   if (fill_intersects(surface, fill)) {
     throw ProcessingError("hole " + std::to_string(hole.id) +
                           ": the front's fill would intersect the surface or itself");
+  }
+  return fill;
+}
+
+// The last resort: the hole's own loop triangulated by least area, no new vertex (what MeshLab's
+// Close Holes does), accepted only if manifold and free of intersections.
+Fill fill_by_least_area(const SurfaceContext& surface, const BoundaryLoop& hole) {
+  std::vector<Vec3> loop;
+  for (int v : hole.vertices) loop.push_back(surface.mesh.positions[v]);
+  std::set<std::pair<int, int>> forbidden;  // chords the mesh already has
+  for (size_t i = 0; i < hole.vertices.size(); ++i) {
+    for (size_t j = i + 2; j < hole.vertices.size(); ++j) {
+      const int a = hole.vertices[i], b = hole.vertices[j];
+      if (find_halfedge(surface.mesh, surface.topology, a, b) >= 0 ||
+          find_halfedge(surface.mesh, surface.topology, b, a) >= 0) {
+        forbidden.emplace(static_cast<int>(i), static_cast<int>(j));
+      }
+    }
+  }
+  Fill fill;
+  fill.boundary = hole.vertices;
+  fill.triangles = triangulate_hole_polygon(loop, forbidden);
+  if (fill.triangles.empty()) {
+    throw ProcessingError("hole " + std::to_string(hole.id) + ": no least-area triangulation");
+  }
+  validate_fill(surface.mesh, surface.topology, hole, fill);
+  if (fill_intersects(surface, fill)) {
+    throw ProcessingError("hole " + std::to_string(hole.id) +
+                          ": the least-area patch would intersect the surface or itself");
   }
   return fill;
 }
@@ -206,16 +229,39 @@ Fill fill_hole(const SurfaceContext& surface, const BoundaryLoop& hole, const In
   report.other_holes = zone.other_holes;
   if (zone.faces.empty()) throw ProcessingError(name + ": the zone of interest is empty");
 
+  // The planes on the whole hole, then the advancing front, then the planes on a part of it
+  // (VI-C): a part leaves the rest to the next pass, the front closes the hole in one go.
   std::string failure;
   std::optional<Fill> fill;
+  ProjectionSearch search;
   if (options.filler == Filler::plane) {
     report.method = "plane";
-    fill = fill_through_planes(surface, hole, zone, inpainter, options, report, failure);
+    search = find_projections(surface.mesh, surface.topology, zone, hole, options.projection);
+    fill = fill_through_planes(surface, hole, zone, search.planes, inpainter, options, report,
+                               failure);
+    if (!fill && failure.empty()) {
+      failure = name + ": complex hole: no plane tried (" +
+                std::to_string(search.orientations_tried) +
+                ") sees its rim from the front with a simple boundary (Section VI-C)";
+    }
   }
   if (!fill && (options.filler == Filler::front || options.fallback_front)) {
     try {
       report.method = "front";
       fill = fill_through_front(surface, hole, zone, options);
+    } catch (const ProcessingError& error) {
+      failure += (failure.empty() ? "" : "; ") + std::string(error.what());
+    }
+  }
+  if (!fill && options.filler == Filler::plane) {
+    report.method = "plane, in part";
+    fill = fill_part_through_planes(surface, hole, zone, search.best_frame, inpainter, options,
+                                    report, failure);
+  }
+  if (!fill && options.fallback_least_area) {
+    try {
+      report.method = "least area";
+      fill = fill_by_least_area(surface, hole);
     } catch (const ProcessingError& error) {
       failure += (failure.empty() ? "" : "; ") + std::string(error.what());
     }

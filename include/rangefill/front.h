@@ -7,6 +7,7 @@
 
 #include "rangefill/holes.h"
 #include "rangefill/mesh.h"
+#include "rangefill/metrics.h"
 #include "rangefill/mls.h"
 #include "rangefill/stitch.h"
 #include "rangefill/topology.h"
@@ -35,7 +36,7 @@ struct FrontOptions {
 /// join `surface`'s samples, so that the surface the front projects onto grows with it. Samples
 /// facing away from the front (the other side of a thin part) are ignored. Throws ProcessingError
 /// (naming the hole) when it stalls or does not close.
-Fill fill_by_front(const Mesh& mesh, const MeshTopology& topology, const BoundaryLoop& hole,
-                   MlsSurface surface, const FrontOptions& options = {});
+Fill fill_by_front(const Mesh& mesh, const MeshTopology& topology, const IntersectionIndex& faces,
+                   const BoundaryLoop& hole, MlsSurface surface, const FrontOptions& options = {});
 
 }  // namespace rangefill

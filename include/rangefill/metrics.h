@@ -1,6 +1,7 @@
 // Measuring a repair: distances between surfaces, closedness, self-intersections, edge ratio.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -55,6 +56,9 @@ class IntersectionIndex {
   struct Tree;
   std::unique_ptr<Tree> tree_;
 };
+
+/// Whether two triangles share a point (exact predicates, CGAL). Degenerate triangles meet nothing.
+bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b);
 
 /// Pairs (f, g) with f in `faces` and g any face of the mesh, not sharing a vertex, whose triangles
 /// intersect. Each unordered pair is counted once.

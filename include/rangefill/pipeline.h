@@ -45,7 +45,7 @@ struct HoleReport {
   double inpainting_seconds = 0;  // of which the back-end
   std::vector<int> other_holes;   // other loops the zone reached
   bool filled = false;
-  std::string method;    // "plane", "plane, in part" or "front"
+  std::string method;    // "plane", "front", "plane, in part" or "least area"
   bool partial = false;  // a part of the hole was filled (Section VI-C); the rest is a new hole
   std::string failure;   // why not, when not filled
 };
@@ -63,7 +63,8 @@ enum class Filler { plane, front };
 
 struct RepairOptions {
   Filler filler = Filler::plane;
-  bool fallback_front = true;  // holes the planes cannot fill go to the advancing front
+  bool fallback_front = true;       // holes the planes cannot fill go to the advancing front
+  bool fallback_least_area = true;  // ... and then to a least-area patch without new vertices
   FrontOptions front;
   MlsOptions mls;
   std::string inpainter = "ns";
@@ -114,10 +115,11 @@ struct SurfaceContext {
 };
 
 /// Fills one hole. With Filler::plane: Sections V–VIII on the best acceptable plane, else the next
-/// ones, else a part of the hole (VI-C, the rest is left to the next pass); then, if allowed, the
-/// advancing front. Reads `surface` only; safe to call concurrently. `report` receives the figures
-/// of the stages it reached. Throws ProcessingError with the reasons when no filler succeeds (a
-/// fill is refused when it would not be manifold or would intersect the surface or itself).
+/// ones; then, if allowed, the advancing front; then a part of the hole on its own planes (VI-C,
+/// the rest is left to the next pass); then, if allowed, a least-area patch of the loop. Reads
+/// `surface` only; safe to call concurrently. `report` receives the figures of the stages it
+/// reached. Throws ProcessingError with the reasons when no filler succeeds (a fill is refused when
+/// it would not be manifold or would intersect the surface or itself).
 Fill fill_hole(const SurfaceContext& surface, const BoundaryLoop& hole, const Inpainter& inpainter,
                const RepairOptions& options, HoleReport& report);
 

@@ -120,7 +120,6 @@ int run_bench(const BenchCommand& command) {
         options.inpainter = inpainter;
         options.trend = trend;
         options.threads = command.threads;
-        options.passes = 1;
         const RepairResult repaired = repair(punched.mesh, options);
         const std::vector<HoleScore> scores = score_repair(original, punched, repaired, mean_edge);
         MethodSummary& summary = summaries[method];
