@@ -32,6 +32,9 @@ std::vector<HoleScore> score_repair(const Mesh& original, const PunchResult& pun
     score.new_vertices = report.new_vertices;
     score.new_faces = report.new_faces;
     score.seconds = report.seconds;
+    score.method = report.method;
+    score.zone_faces = report.zone_faces;
+    score.stages = report.stages;
     if (!report.filled) continue;
     const std::vector<int> patch = faces_of_hole(repaired.mesh, report.id);
     score.distance = surface_distance(repaired.mesh, patch, original,

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
+#include <numeric>
 #include <set>
 
 #include <CGAL/AABB_traits.h>
@@ -107,6 +109,7 @@ struct IntersectionIndex::Tree {
   std::vector<CgalTriangle> triangles;
   std::vector<Triangle> corners;
   AabbTree tree;
+  std::once_flag built;  // the tree is built on the first query, by whichever thread asks
 };
 
 IntersectionIndex::IntersectionIndex(const Mesh& mesh) : tree_(std::make_unique<Tree>()) {
@@ -114,8 +117,6 @@ IntersectionIndex::IntersectionIndex(const Mesh& mesh) : tree_(std::make_unique<
   std::iota(all.begin(), all.end(), 0);
   tree_->triangles = to_triangles(mesh, all);
   tree_->corners = mesh.triangles;
-  tree_->tree.insert(tree_->triangles.begin(), tree_->triangles.end());
-  tree_->tree.build();
 }
 
 IntersectionIndex::~IntersectionIndex() = default;
@@ -126,6 +127,10 @@ std::vector<int> IntersectionIndex::intersecting_faces(const Vec3& a, const Vec3
                                                        const Triangle& corners) const {
   std::vector<int> faces;
   if (tree_->triangles.empty()) return faces;
+  std::call_once(tree_->built, [this] {
+    tree_->tree.insert(tree_->triangles.cbegin(), tree_->triangles.cend());
+    tree_->tree.build();
+  });
   std::vector<Primitive::Id> hits;
   tree_->tree.all_intersected_primitives(CgalTriangle(to_point(a), to_point(b), to_point(c)),
                                          std::back_inserter(hits));

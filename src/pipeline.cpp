@@ -17,12 +17,29 @@
 
 namespace rangefill {
 
+SurfaceContext::SurfaceContext(const Mesh& surface_mesh, double mean_edge_length)
+    : mesh(surface_mesh),
+      topology(build_topology(surface_mesh)),
+      holes(find_holes(surface_mesh, topology)),
+      normals(vertex_normals_from_faces(surface_mesh)),
+      mean_edge(mean_edge_length > 0 ? mean_edge_length
+                                     : rangefill::mean_edge_length(surface_mesh, topology)),
+      faces(surface_mesh) {}
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Seconds since `start`, which moves on to now.
+double lap(Clock::time_point& start) {
+  const Clock::time_point now = Clock::now();
+  const double seconds = std::chrono::duration<double>(now - start).count();
+  start = now;
+  return seconds;
 }
 
 std::vector<int> sorted_vertices(const BoundaryLoop& loop) {
@@ -83,6 +100,7 @@ Fill fill_through_plane(const SurfaceContext& surface, const BoundaryLoop& hole,
                         const RepairOptions& options, HoleReport& report) {
   const Mesh& mesh = surface.mesh;
   const MeshTopology& topology = surface.topology;
+  Clock::time_point stage = Clock::now();
   const Zone visible = visible_part(mesh, topology, zone, hole, frame);
   report.zone_faces = static_cast<int>(visible.faces.size());
 
@@ -103,34 +121,26 @@ Fill fill_through_plane(const SurfaceContext& surface, const BoundaryLoop& hole,
   const cv::Mat trend_image = trend.image(image.depth.size());
   const cv::Mat residual = image.depth - trend_image;
 
-  const Clock::time_point inpainting_start = Clock::now();
+  report.stages.image += lap(stage);
+
   cv::Mat restored;
   inpainter.inpaint(residual, mask, restored);
-  report.inpainting_seconds += seconds_since(inpainting_start);
   restored += trend_image;
+  report.stages.inpainting += lap(stage);
   if (options.on_images) options.on_images({report.id, image, restored});
 
+  stage = Clock::now();
   const Patch patch = back_project(mesh, hole, image, restored, options.back_projection);
   Fill fill = stitch(mesh, topology, hole, frame, patch, triangulate_grid(patch));
-  if (fill_intersects(surface, fill)) {
+  report.stages.stitching += lap(stage);
+  const bool intersects = fill_intersects(surface, fill);
+  report.stages.checking += lap(stage);
+  if (intersects) {
     throw ProcessingError("hole " + std::to_string(hole.id) +
                           ": the fill would intersect the surface or itself");
   }
   return fill;
 }
-
-}  // namespace
-
-SurfaceContext::SurfaceContext(const Mesh& surface_mesh, double mean_edge_length)
-    : mesh(surface_mesh),
-      topology(build_topology(surface_mesh)),
-      holes(find_holes(surface_mesh, topology)),
-      normals(vertex_normals_from_faces(surface_mesh)),
-      mean_edge(mean_edge_length > 0 ? mean_edge_length
-                                     : rangefill::mean_edge_length(surface_mesh, topology)),
-      faces(surface_mesh) {}
-
-namespace {
 
 // Sections VI–VIII on each plane in turn; the first fill accepted wins, the first refusal is kept.
 std::optional<Fill> fill_through_planes(const SurfaceContext& surface, const BoundaryLoop& loop,
@@ -222,8 +232,10 @@ Fill fill_hole(const SurfaceContext& surface, const BoundaryLoop& hole, const In
   report.boundary_vertices = static_cast<int>(hole.vertices.size());
   report.area = hole.area;
 
+  Clock::time_point stage = start;
   const Zone zone = grow_zone(surface.mesh, surface.topology, surface.holes, hole, surface.normals,
                               surface.mean_edge, options.zone);
+  report.stages.zone = lap(stage);
   report.rings = zone.rings;
   report.zone_faces = static_cast<int>(zone.faces.size());
   report.other_holes = zone.other_holes;
@@ -237,6 +249,7 @@ Fill fill_hole(const SurfaceContext& surface, const BoundaryLoop& hole, const In
   if (options.filler == Filler::plane) {
     report.method = "plane";
     search = find_projections(surface.mesh, surface.topology, zone, hole, options.projection);
+    report.stages.planes = lap(stage);
     fill = fill_through_planes(surface, hole, zone, search.planes, inpainter, options, report,
                                failure);
     if (!fill && failure.empty()) {
@@ -248,7 +261,9 @@ Fill fill_hole(const SurfaceContext& surface, const BoundaryLoop& hole, const In
   if (!fill && (options.filler == Filler::front || options.fallback_front)) {
     try {
       report.method = "front";
+      stage = Clock::now();
       fill = fill_through_front(surface, hole, zone, options);
+      report.stages.front = lap(stage);
     } catch (const ProcessingError& error) {
       failure += (failure.empty() ? "" : "; ") + std::string(error.what());
     }

@@ -21,6 +21,9 @@ struct HoleScore {
   int new_vertices = 0;
   int new_faces = 0;
   double seconds = 0;
+  std::string method;  // of the pass-0 fill (HoleReport::method)
+  int zone_faces = 0;
+  HoleReport::Stages stages;
 };
 
 /// Scores a repair of `punched.mesh` against the faces removed from `original`: each punched hole

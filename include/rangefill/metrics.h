@@ -38,8 +38,8 @@ struct ManifoldCheck {
 };
 ManifoldCheck check_manifold(const Mesh& mesh);
 
-/// The faces of a mesh in a bounding-volume tree (CGAL AABB tree) for intersection queries. Built
-/// once in O(F log F); const queries may run from several threads.
+/// The faces of a mesh in a bounding-volume tree (CGAL AABB tree) for intersection queries. The
+/// tree is built in O(F log F) on the first query; queries may run from several threads.
 class IntersectionIndex {
  public:
   explicit IntersectionIndex(const Mesh& mesh);

@@ -42,8 +42,15 @@ struct HoleReport {
   int new_vertices = 0;
   int new_faces = 0;
   double seconds = 0;             // whole hole
-  double inpainting_seconds = 0;  // of which the back-end
-  std::vector<int> other_holes;   // other loops the zone reached
+  struct Stages {                 // of which (seconds; summed over the planes tried)
+    double zone = 0, planes = 0;  // grow_zone, find_projections
+    double image = 0;             // visible_part, rasterize_zone, fill_small_gaps, the trend
+    double inpainting = 0;        // the back-end
+    double stitching = 0;         // back_project, triangulate_grid, stitch
+    double checking = 0;          // the intersection test of the fill
+    double front = 0;             // the advancing front, its checks included
+  } stages;
+  std::vector<int> other_holes;  // other loops the zone reached
   bool filled = false;
   std::string method;    // "plane", "front", "plane, in part" or "least area"
   bool partial = false;  // a part of the hole was filled (Section VI-C); the rest is a new hole

@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 
 struct BenchCommand {
   std::vector<std::string> meshes;
-  std::string inpainters, trends = "quadric", csv;
+  std::string inpainters, trends = "quadric", csv, save;
   PunchOptions punch;
   int threads = 1;
   bool json = false;
@@ -109,6 +109,22 @@ int run_bench(const BenchCommand& command) {
     PunchOptions punch = command.punch;
     punch.seed = command.punch.seed ^ name_hash(file.filename().string());
     const PunchResult punched = punch_holes(original, punch);
+    const std::string stem = file.stem().string();
+    if (!command.save.empty()) {
+      fs::create_directories(command.save);
+      write_mesh(punched.mesh, fs::path(command.save) / (stem + "-punched.ply"));
+      Mesh truth;  // the removed faces, each marked with the hole it belongs to
+      for (size_t h = 0; h < punched.holes.size(); ++h) {
+        const Mesh part = extract_faces(original, punched.holes[h].removed_faces);
+        const int offset = truth.vertex_count();
+        for (const Vec3& p : part.positions) add_vertex(truth, p, static_cast<int>(h));
+        for (Triangle t : part.triangles) {
+          for (int& v : t) v += offset;
+          add_face(truth, t, static_cast<int>(h));
+        }
+      }
+      write_mesh(truth, fs::path(command.save) / (stem + "-truth.ply"));
+    }
     for (const std::string& inpainter : inpainters) {
       for (TrendKind trend : trends) {
         const std::string method = inpainter + (trends.size() > 1 ? "+" + trend_name(trend) : "");
@@ -121,6 +137,9 @@ int run_bench(const BenchCommand& command) {
         options.trend = trend;
         options.threads = command.threads;
         const RepairResult repaired = repair(punched.mesh, options);
+        if (!command.save.empty()) {
+          write_mesh(repaired.mesh, fs::path(command.save) / (stem + "-" + method + ".ply"));
+        }
         const std::vector<HoleScore> scores = score_repair(original, punched, repaired, mean_edge);
         MethodSummary& summary = summaries[method];
         const int intersections =
@@ -149,14 +168,18 @@ int run_bench(const BenchCommand& command) {
   if (!command.csv.empty()) {
     std::ofstream csv(command.csv);
     csv << "mesh,method,hole,area,filled,hausdorff,from_patch,from_truth,mean_distance,d_m,"
-           "edge_ratio,new_vertices,new_faces,seconds,failure\n";
+           "edge_ratio,new_vertices,new_faces,seconds,filler,zone_faces,zone_s,planes_s,image_s,"
+           "inpainting_s,stitching_s,checking_s,front_s,failure\n";
     for (const Row& row : rows) {
       const HoleScore& s = row.score;
       csv << row.mesh << ',' << row.method << ',' << s.hole << ',' << s.area << ',' << s.filled
           << ',' << s.distance.hausdorff << ',' << s.distance.from_first << ','
           << s.distance.from_second << ',' << s.distance.mean << ',' << row.mean_edge << ','
           << s.edge_ratio << ',' << s.new_vertices << ',' << s.new_faces << ',' << s.seconds
-          << ",\"" << s.failure << "\"\n";
+          << ",\"" << s.method << "\"," << s.zone_faces << ',' << s.stages.zone << ','
+          << s.stages.planes << ',' << s.stages.image << ',' << s.stages.inpainting << ','
+          << s.stages.stitching << ',' << s.stages.checking << ',' << s.stages.front << ",\""
+          << s.failure << "\"\n";
     }
   }
 
@@ -224,6 +247,9 @@ void add_bench_command(CLI::App& app, Runner& runner) {
       ->capture_default_str()
       ->check(CLI::Range(1, 256));
   sub->add_option("--csv", command->csv, "Write one row per hole and method to this file");
+  sub->add_option(
+      "--save", command->save,
+      "Write each punched mesh, its removed faces (the ground truth) and each repair here");
   sub->add_flag("--json", command->json, "Print the summary as JSON");
   sub->callback([command, &runner] { runner = [command] { return run_bench(*command); }; });
 }
