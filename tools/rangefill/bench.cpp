@@ -22,7 +22,8 @@ namespace fs = std::filesystem;
 
 struct BenchCommand {
   std::vector<std::string> meshes;
-  std::string inpainters, trends = "quadric", csv, save;
+  std::string inpainters, trends = "quadric", csv, save, filler = "plane";
+  bool no_fallback = false;
   PunchOptions punch;
   int threads = 1;
   bool json = false;
@@ -136,6 +137,8 @@ int run_bench(const BenchCommand& command) {
         options.inpainter = inpainter;
         options.trend = trend;
         options.threads = command.threads;
+        options.filler = command.filler == "front" ? Filler::front : Filler::plane;
+        options.fallback_front = options.fallback_least_area = !command.no_fallback;
         const RepairResult repaired = repair(punched.mesh, options);
         if (!command.save.empty()) {
           write_mesh(repaired.mesh, fs::path(command.save) / (stem + "-" + method + ".ply"));
@@ -243,6 +246,10 @@ void add_bench_command(CLI::App& app, Runner& runner) {
   sub->add_option("--inpainters", command->inpainters, "Comma-separated back-ends (default: all)");
   sub->add_option("--trends", command->trends, "Comma-separated trends (none, plane, quadric)")
       ->capture_default_str();
+  sub->add_option("--filler", command->filler, "plane or front (see rangefill repair --help)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"plane", "front"}));
+  sub->add_flag("--no-fallback", command->no_fallback, "No advancing front, no least-area patch");
   sub->add_option("--threads", command->threads, "Holes filled in parallel")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));

@@ -19,7 +19,8 @@ namespace {
 namespace fs = std::filesystem;
 
 struct RepairCommand {
-  std::string input, output, report, debug_dir, holes = "all", trend = "quadric";
+  std::string input, output, report, debug_dir, holes = "all", trend = "quadric", filler = "plane";
+  bool no_fallback = false;
   bool in_place = false, json = false, ascii = false, fill_all = false;
   RepairOptions options;
 };
@@ -90,6 +91,7 @@ nlohmann::json report_json(const RepairCommand& command, const RepairResult& res
           {"output", command.output},
           {"inpainter", command.options.inpainter},
           {"trend", command.trend},
+          {"filler", command.filler},
           {"holes", holes},
           {"restoration_matrix", result.restoration_matrix},
           {"holes_left", result.holes_left},
@@ -119,6 +121,8 @@ int run_repair(RepairCommand& command) {
   command.options.holes = parse_hole_ids(command.holes);
   command.options.trend = trend_from_name(command.trend);
   command.options.skip_longest_loops = !command.fill_all;
+  command.options.filler = command.filler == "front" ? Filler::front : Filler::plane;
+  command.options.fallback_front = command.options.fallback_least_area = !command.no_fallback;
   const Mesh mesh = load_mesh(command.input);
 
   const bool progress = stderr_is_terminal();
@@ -185,6 +189,12 @@ void add_repair_command(CLI::App& app, Runner& runner) {
   sub->add_option("input", command->input, "Mesh with holes (.ply, .obj, .off, .stl)")->required();
   sub->add_option("-o,--output", command->output, "Repaired mesh (format from the extension)")
       ->required();
+  sub->add_option("--filler", command->filler,
+                  "plane: range images (Pérez et al.); front: advancing front (Tekumalla & Cohen)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"plane", "front"}));
+  sub->add_flag("--no-fallback", command->no_fallback,
+                "Leave open what the filler cannot fill (no advancing front, no least-area patch)");
   sub->add_option("--inpainter", options.inpainter, "Back-end: " + join(inpainter_names()))
       ->capture_default_str()
       ->check(CLI::IsMember(inpainter_names()));
