@@ -282,7 +282,6 @@ Fill fill_hole(const SurfaceContext& surface, const BoundaryLoop& hole, const In
     }
   }
   if (!fill) throw ProcessingError(failure);
-  report.partial = report.method == "plane, in part";
   report.new_vertices = static_cast<int>(fill->points.size());
   report.new_faces = static_cast<int>(fill->triangles.size());
   report.filled = true;

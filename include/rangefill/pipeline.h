@@ -52,9 +52,9 @@ struct HoleReport {
   } stages;
   std::vector<int> other_holes;  // other loops the zone reached
   bool filled = false;
-  std::string method;    // "plane", "front", "plane, in part" or "least area"
-  bool partial = false;  // a part of the hole was filled (Section VI-C); the rest is a new hole
-  std::string failure;   // why not, when not filled
+  std::string method;   // "plane", "front", "plane, in part" (VI-C: the rest is a new hole) or
+                        // "least area"
+  std::string failure;  // why not, when not filled
 };
 
 /// Everything a person needs to look at one hole's images (see RepairOptions::on_images).

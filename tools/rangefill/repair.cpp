@@ -83,7 +83,6 @@ nlohmann::json report_json(const RepairCommand& command, const RepairResult& res
                      {"method", hole.method},
                      {"other_holes", hole.other_holes},
                      {"filled", hole.filled},
-                     {"partial", hole.partial},
                      {"rim_support", hole.rim_support},
                      {"failure", hole.failure}});
   }
@@ -108,7 +107,7 @@ void print_summary(const RepairResult& result) {
     std::printf("%5d %4d %9d %4d %11s %7d %8d %8.3f  %s\n", hole.id, hole.pass,
                 hole.boundary_vertices, hole.rings, size.c_str(), hole.masked_pixels,
                 hole.new_vertices, hole.seconds,
-                hole.filled ? (hole.partial ? "filled a part" : "filled") : hole.failure.c_str());
+                hole.filled ? ("filled: " + hole.method).c_str() : hole.failure.c_str());
   }
 }
 
