@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 struct BenchCommand {
   std::vector<std::string> meshes;
   std::string inpainters, trends = "quadric", csv, save, filler = "plane";
-  bool no_fallback = false;
+  std::string fallback = "front,least-area";
   PunchOptions punch;
   int threads = 1;
   bool json = false;
@@ -138,7 +138,7 @@ int run_bench(const BenchCommand& command) {
         options.trend = trend;
         options.threads = command.threads;
         options.filler = command.filler == "front" ? Filler::front : Filler::plane;
-        options.fallback_front = options.fallback_least_area = !command.no_fallback;
+        set_fallbacks(command.fallback, options);
         const RepairResult repaired = repair(punched.mesh, options);
         if (!command.save.empty()) {
           write_mesh(repaired.mesh, fs::path(command.save) / (stem + "-" + method + ".ply"));
@@ -249,7 +249,8 @@ void add_bench_command(CLI::App& app, Runner& runner) {
   sub->add_option("--filler", command->filler, "plane or front (see rangefill repair --help)")
       ->capture_default_str()
       ->check(CLI::IsMember({"plane", "front"}));
-  sub->add_flag("--no-fallback", command->no_fallback, "No advancing front, no least-area patch");
+  sub->add_option("--fallback", command->fallback, "front, least-area, both, or none")
+      ->capture_default_str();
   sub->add_option("--threads", command->threads, "Holes filled in parallel")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));

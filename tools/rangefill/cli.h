@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "rangefill/io.h"
+#include "rangefill/pipeline.h"
 
 namespace rangefill::cli {
 
@@ -34,6 +35,10 @@ void add_info_command(CLI::App& app, Runner& runner);
 void add_holes_command(CLI::App& app, Runner& runner);
 void add_repair_command(CLI::App& app, Runner& runner);
 void add_bench_command(CLI::App& app, Runner& runner);
+
+/// Sets RepairOptions' fallbacks from "front,least-area", "front", "least-area" or "none"; throws
+/// UsageError otherwise.
+void set_fallbacks(const std::string& list, RepairOptions& options);
 
 /// Reads a mesh, printing its warnings to stderr as "warning: ..." lines.
 Mesh load_mesh(const std::string& path);

@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 
 struct RepairCommand {
   std::string input, output, report, debug_dir, holes = "all", trend = "quadric", filler = "plane";
-  bool no_fallback = false;
+  std::string fallback = "front,least-area";
   bool in_place = false, json = false, ascii = false, fill_all = false;
   RepairOptions options;
 };
@@ -121,7 +121,7 @@ int run_repair(RepairCommand& command) {
   command.options.trend = trend_from_name(command.trend);
   command.options.skip_longest_loops = !command.fill_all;
   command.options.filler = command.filler == "front" ? Filler::front : Filler::plane;
-  command.options.fallback_front = command.options.fallback_least_area = !command.no_fallback;
+  set_fallbacks(command.fallback, command.options);
   const Mesh mesh = load_mesh(command.input);
 
   const bool progress = stderr_is_terminal();
@@ -192,8 +192,11 @@ void add_repair_command(CLI::App& app, Runner& runner) {
                   "plane: range images (Pérez et al.); front: advancing front (Tekumalla & Cohen)")
       ->capture_default_str()
       ->check(CLI::IsMember({"plane", "front"}));
-  sub->add_flag("--no-fallback", command->no_fallback,
-                "Leave open what the filler cannot fill (no advancing front, no least-area patch)");
+  sub->add_option(
+         "--fallback", command->fallback,
+         "What takes a hole the filler cannot fill: front, least-area, both (in that order), "
+         "or none")
+      ->capture_default_str();
   sub->add_option("--inpainter", options.inpainter, "Back-end: " + join(inpainter_names()))
       ->capture_default_str()
       ->check(CLI::IsMember(inpainter_names()));
