@@ -168,6 +168,16 @@ class Front {
     return true;
   }
 
+  // Cuts the ear at front vertex v: the triangle (next, v, prev) joins the fill, v leaves the front.
+  void clip(int v) {
+    const int u = prev_[v], w = next_[v];
+    add_triangle({w, v, u});
+    next_[u] = w;
+    prev_[w] = u;
+    on_front_[v] = 0;
+    --size_;
+  }
+
   // make-convex: clip the front vertex of smallest hole angle below φ whose ear is clear, again
   // and again.
   bool make_convex(double phi) {
@@ -191,12 +201,7 @@ class Front {
         }
       }
       if (clipped < 0) break;
-      const int u = prev_[clipped], w = next_[clipped];
-      add_triangle({w, clipped, u});
-      next_[u] = w;
-      prev_[w] = u;
-      on_front_[clipped] = 0;
-      --size_;
+      clip(clipped);
       progress = true;
     }
     return progress;
@@ -308,12 +313,7 @@ class Front {
         }
       }
       if (best < 0) return false;
-      const int u = prev_[best], w = next_[best];
-      add_triangle({w, best, u});
-      next_[u] = w;
-      prev_[w] = u;
-      on_front_[best] = 0;
-      --size_;
+      clip(best);
     }
     return close_triangle();
   }
