@@ -122,12 +122,16 @@ RangeImage rasterize_zone(const Mesh& mesh, const Zone& zone, const BoundaryLoop
     const double x_hi = std::max({corners[0].x(), corners[1].x(), corners[2].x()});
     const double y_lo = std::min({corners[0].y(), corners[1].y(), corners[2].y()});
     const double y_hi = std::max({corners[0].y(), corners[1].y(), corners[2].y()});
-    const int col_begin = std::max(0, static_cast<int>(std::ceil((x_lo - image.x_min) / q)));
+    // Pixel centres on the triangle's bounding box count (the inside test below has a tolerance).
+    const double slack = 1e-9;
+    const int col_begin =
+        std::max(0, static_cast<int>(std::ceil((x_lo - image.x_min) / q - slack)));
     const int col_end =
-        std::min(size.width - 1, static_cast<int>(std::floor((x_hi - image.x_min) / q)));
-    const int row_begin = std::max(0, static_cast<int>(std::ceil((image.y_max - y_hi) / q)));
+        std::min(size.width - 1, static_cast<int>(std::floor((x_hi - image.x_min) / q + slack)));
+    const int row_begin =
+        std::max(0, static_cast<int>(std::ceil((image.y_max - y_hi) / q - slack)));
     const int row_end =
-        std::min(size.height - 1, static_cast<int>(std::floor((image.y_max - y_lo) / q)));
+        std::min(size.height - 1, static_cast<int>(std::floor((image.y_max - y_lo) / q + slack)));
     const double tolerance = -1e-12 * area2;
     for (int row = row_begin; row <= row_end; ++row) {
       const double y = image.y_max - row * q;
@@ -284,7 +288,8 @@ GapFillStats fill_small_gaps(RangeImage& image) {
       for_neighbours(
           p,
           [&](int n) {
-            if (label(n) == kGapPixel) queue.emplace(++filled_neighbours[n], -n);
+            if (label(n) == kGapPixel && area_of[n] == area_of[p])
+              queue.emplace(++filled_neighbours[n], -n);
           },
           true);
     }

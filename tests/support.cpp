@@ -1,10 +1,13 @@
 #include "support.h"
 
+#include <unistd.h>
+
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <map>
 
-#include <unistd.h>
+#include <gtest/gtest.h>
 
 namespace rangefill::testing {
 
@@ -97,6 +100,45 @@ Mesh make_sphere(int frequency) {
     }
   }
   return make_mesh(positions, triangles);
+}
+
+void expect_bit_identical(const std::vector<Vec3>& actual, const std::vector<Vec3>& expected) {
+  ASSERT_EQ(actual.size(), expected.size());
+  for (size_t i = 0; i < actual.size(); ++i) {
+    EXPECT_EQ(std::memcmp(actual[i].data(), expected[i].data(), sizeof(double) * 3), 0)
+        << "element " << i << ": " << actual[i].transpose() << " vs " << expected[i].transpose();
+  }
+}
+
+void expect_input_preserved(const Mesh& input, const Mesh& output) {
+  ASSERT_GE(output.vertex_count(), input.vertex_count());
+  ASSERT_GE(output.face_count(), input.face_count());
+  expect_bit_identical({output.positions.begin(), output.positions.begin() + input.vertex_count()},
+                       input.positions);
+  EXPECT_TRUE(std::equal(input.triangles.begin(), input.triangles.end(), output.triangles.begin()));
+  for (int v = input.vertex_count(); v < output.vertex_count(); ++v) {
+    EXPECT_NE(output.vertex_hole[v], kOriginal) << "vertex " << v;
+  }
+}
+
+TiltedSheet make_tilted_sheet(int n, const Eigen::Matrix3d& rotation, const Vec3& shift,
+                              const Vec3& centre, double radius) {
+  TiltedSheet sheet;
+  sheet.rotation = rotation;
+  sheet.shift = shift;
+  Mesh grid = make_grid(n);
+  for (Vec3& p : grid.positions) p = rotation * p + shift;
+  sheet.mesh = remove_faces(grid, [&](const Vec3& p) {
+    return (rotation.transpose() * (p - shift) - centre).norm() < radius;
+  });
+  for (const BoundaryLoop& loop : find_holes(sheet.mesh, build_topology(sheet.mesh)).loops) {
+    if (!loop.longest_in_component) sheet.hole = loop;
+  }
+  for (int f = 0; f < sheet.mesh.face_count(); ++f) sheet.zone.faces.push_back(f);
+  for (int v = 0; v < sheet.mesh.vertex_count(); ++v) sheet.zone.vertices.push_back(v);
+  const auto [lo, hi] = bounding_box(sheet.mesh);
+  sheet.size = (hi - lo).norm();
+  return sheet;
 }
 
 }  // namespace rangefill::testing

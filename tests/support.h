@@ -4,8 +4,11 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "rangefill/holes.h"
 #include "rangefill/mesh.h"
+#include "rangefill/zone.h"
 
 namespace rangefill::testing {
 
@@ -43,6 +46,28 @@ Mesh remove_faces(const Mesh& mesh, Predicate inside) {
   }
   return make_mesh(mesh.positions, kept);
 }
+
+/// EXPECTs that the two lists hold the same doubles, bit for bit (which == would not tell of -0).
+void expect_bit_identical(const std::vector<Vec3>& actual, const std::vector<Vec3>& expected);
+
+/// EXPECTs that the input's vertices and faces are the first of the output, unchanged, and that
+/// every later vertex is marked as generated.
+void expect_input_preserved(const Mesh& input, const Mesh& output);
+
+/// make_grid(n) moved by `rotation` and `shift`, with the faces whose three vertices lie within
+/// `radius` of `centre` (grid coordinates) removed: an open sheet with one round hole.
+struct TiltedSheet {
+  Mesh mesh;
+  Eigen::Matrix3d rotation;  // grid → world
+  Vec3 shift;
+  BoundaryLoop hole;  // the round hole, not the sheet's border
+  Zone zone;          // every face
+  double size = 0;    // bounding-box diagonal, the scale of tolerances
+  Vec3 normal() const { return rotation.col(2); }
+  double distance(const Vec3& p) const { return std::abs((p - shift).dot(normal())); }
+};
+TiltedSheet make_tilted_sheet(int n, const Eigen::Matrix3d& rotation, const Vec3& shift,
+                              const Vec3& centre, double radius);
 
 }  // namespace rangefill::testing
 

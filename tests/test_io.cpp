@@ -54,19 +54,11 @@ void add_eight_bit_colours(Mesh& mesh) {
   mesh.storage.color = ScalarType::uint8;
 }
 
-void expect_bit_identical(const std::vector<Vec3>& actual, const std::vector<Vec3>& expected) {
-  ASSERT_EQ(actual.size(), expected.size());
-  for (size_t i = 0; i < actual.size(); ++i) {
-    EXPECT_EQ(std::memcmp(actual[i].data(), expected[i].data(), sizeof(double) * 3), 0)
-        << "element " << i << ": " << actual[i].transpose() << " vs " << expected[i].transpose();
-  }
-}
-
 // Vertex order, faces, and the attributes the mesh has, all exactly.
 void expect_same_mesh(const Mesh& actual, const Mesh& expected) {
-  expect_bit_identical(actual.positions, expected.positions);
+  testing::expect_bit_identical(actual.positions, expected.positions);
   EXPECT_EQ(actual.triangles, expected.triangles);
-  expect_bit_identical(actual.normals, expected.normals);
+  testing::expect_bit_identical(actual.normals, expected.normals);
   EXPECT_EQ(actual.colors, expected.colors);
   EXPECT_EQ(actual.vertex_hole, std::vector<int>(expected.vertex_count(), kOriginal));
   EXPECT_EQ(actual.face_hole, std::vector<int>(expected.face_count(), kOriginal));
@@ -489,7 +481,7 @@ TEST(StlIo, WeldingNumbersVerticesInOrderOfFirstOccurrence) {
   for (int i = 0; i < 4; ++i) triangles.push_back({i, i + 1, i + 2});
   const Mesh strip = make_mesh(positions, triangles);
   const ReadResult back = round_trip(strip, MeshFormat::stl);
-  expect_bit_identical(back.mesh.positions, strip.positions);
+  testing::expect_bit_identical(back.mesh.positions, strip.positions);
   EXPECT_EQ(back.mesh.triangles, strip.triangles);
 }
 

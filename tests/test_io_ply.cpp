@@ -23,14 +23,6 @@ Mesh awkward_mesh(bool float32) {
   return mesh;
 }
 
-void expect_bit_identical(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  ASSERT_EQ(a.size(), b.size());
-  for (size_t i = 0; i < a.size(); ++i) {
-    EXPECT_EQ(std::memcmp(a[i].data(), b[i].data(), sizeof(double) * 3), 0)
-        << "vertex " << i << ": " << a[i].transpose() << " vs " << b[i].transpose();
-  }
-}
-
 Mesh round_trip(const Mesh& mesh, const WriteOptions& options) {
   return parse_mesh(serialize_mesh(mesh, MeshFormat::ply, options), MeshFormat::ply, "mem.ply")
       .mesh;
@@ -53,7 +45,7 @@ TEST(PlyIo, BinaryPositionsRoundTripBitExactInBothEndiannessesAndPrecisions) {
       WriteOptions options;
       options.big_endian = big_endian;
       const Mesh back = round_trip(mesh, options);
-      expect_bit_identical(back.positions, mesh.positions);
+      testing::expect_bit_identical(back.positions, mesh.positions);
       EXPECT_EQ(back.triangles, mesh.triangles);
       EXPECT_EQ(back.storage.position, mesh.storage.position);
     }
@@ -68,7 +60,7 @@ TEST(PlyIo, AsciiRoundTripReadsBackTheSameValues) {
     const std::string text = serialize_mesh(mesh, MeshFormat::ply, ascii);
     EXPECT_NE(text.find("format ascii 1.0"), std::string::npos);
     const Mesh back = round_trip(mesh, ascii);
-    expect_bit_identical(back.positions, mesh.positions);  // shortest round-trip printing
+    testing::expect_bit_identical(back.positions, mesh.positions);  // shortest round-trip printing
     EXPECT_EQ(back.triangles, mesh.triangles);
   }
 }
@@ -94,7 +86,7 @@ TEST(PlyIo, ColoursNormalsExtraPropertiesAndProvenanceSurvive) {
     options.encoding = encoding;
     const Mesh back = round_trip(mesh, options);
     EXPECT_EQ(back.colors, mesh.colors);
-    expect_bit_identical(back.normals, mesh.normals);
+    testing::expect_bit_identical(back.normals, mesh.normals);
     ASSERT_EQ(back.vertex_properties.size(), 2u);
     EXPECT_EQ(back.vertex_properties[0].name, "quality");
     EXPECT_EQ(back.vertex_properties[0].values, mesh.vertex_properties[0].values);
@@ -122,7 +114,7 @@ TEST(PlyIo, WriteThenReadFileKeepsFacesInOrder) {
   write_mesh(mesh, dir / "cube.ply");
   const ReadResult back = read_mesh(dir / "cube.ply");
   EXPECT_EQ(back.mesh.triangles, mesh.triangles);
-  expect_bit_identical(back.mesh.positions, mesh.positions);
+  testing::expect_bit_identical(back.mesh.positions, mesh.positions);
   EXPECT_TRUE(back.warnings.empty());
   // Nothing else (no temporary file) is left in the directory.
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1);
@@ -213,7 +205,7 @@ TEST(PlyIo, SharedMeshesRoundTripBitExact) {
     const Mesh mesh = read_mesh(data / file).mesh;
     EXPECT_EQ(mesh.storage.position, ScalarType::float32);
     const Mesh back = round_trip(mesh, {});
-    expect_bit_identical(back.positions, mesh.positions);
+    testing::expect_bit_identical(back.positions, mesh.positions);
     EXPECT_EQ(back.triangles, mesh.triangles);
   }
 }

@@ -1,0 +1,158 @@
+// Punching holes (punch.h): determinism, one simple boundary loop per hole, holes kept apart,
+// vertex bookkeeping, and extract_faces.
+#include "rangefill/punch.h"
+
+#include <algorithm>
+#include <cstring>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "rangefill/errors.h"
+#include "rangefill/holes.h"
+#include "rangefill/metrics.h"
+#include "support.h"
+
+namespace rangefill {
+namespace {
+
+PunchOptions options_with_seed(std::uint64_t seed) {
+  PunchOptions options;
+  options.holes = 5;
+  options.seed = seed;
+  options.min_radius = 2;
+  options.max_radius = 5;
+  return options;
+}
+
+const Mesh& sphere() {
+  static const Mesh mesh = testing::make_sphere(16);  // 5120 faces, d_m ≈ 0.067
+  return mesh;
+}
+
+bool same_mesh(const Mesh& a, const Mesh& b) {
+  return a.positions.size() == b.positions.size() && a.triangles == b.triangles &&
+         std::memcmp(a.positions.data(), b.positions.data(), sizeof(Vec3) * a.positions.size()) ==
+             0;
+}
+
+// The same seed gives the same holes and mesh, bit for bit; another seed other holes.
+TEST(PunchHoles, IsDeterministicForASeed) {
+  const PunchResult first = punch_holes(sphere(), options_with_seed(7));
+  const PunchResult again = punch_holes(sphere(), options_with_seed(7));
+  const PunchResult other = punch_holes(sphere(), options_with_seed(8));
+  ASSERT_EQ(first.holes.size(), 5u);
+  ASSERT_EQ(again.holes.size(), first.holes.size());
+  EXPECT_TRUE(same_mesh(first.mesh, again.mesh));
+  EXPECT_EQ(first.original_vertex, again.original_vertex);
+  for (size_t h = 0; h < first.holes.size(); ++h) {
+    EXPECT_EQ(first.holes[h].centre, again.holes[h].centre);
+    EXPECT_EQ(first.holes[h].radius, again.holes[h].radius);
+    EXPECT_EQ(first.holes[h].removed_faces, again.holes[h].removed_faces);
+  }
+  EXPECT_FALSE(same_mesh(first.mesh, other.mesh));
+  EXPECT_NE(first.holes[0].centre, other.holes[0].centre);
+}
+
+// Each punched hole leaves one boundary loop through distinct vertices, so there are as many loops
+// as holes; the removed regions are disks (Euler characteristic 1, one border loop) of the given
+// radius, pairwise disjoint and without a common vertex; faces removed and faces kept add up.
+TEST(PunchHoles, LeavesOneSimpleLoopPerHoleAndKeepsHolesApart) {
+  for (std::uint64_t seed : {1, 2, 3}) {
+    const PunchResult result = punch_holes(sphere(), options_with_seed(seed));
+    ASSERT_GE(result.holes.size(), 3u) << "seed " << seed;
+    const HoleSet loops = find_holes(result.mesh, build_topology(result.mesh));
+    EXPECT_EQ(loops.loops.size(), result.holes.size()) << "seed " << seed;
+    for (const BoundaryLoop& loop : loops.loops) {
+      const std::set<int> distinct(loop.vertices.begin(), loop.vertices.end());
+      EXPECT_EQ(distinct.size(), loop.vertices.size()) << "seed " << seed;
+    }
+    EXPECT_TRUE(loops.pinched_vertices.empty());
+
+    const double mean_edge = mean_edge_length(sphere());
+    std::set<int> used_faces, used_vertices;
+    size_t removed = 0;
+    for (const PunchedHole& hole : result.holes) {
+      EXPECT_TRUE(std::is_sorted(hole.removed_faces.begin(), hole.removed_faces.end()));
+      EXPECT_GE(hole.radius, 2 * mean_edge);
+      EXPECT_LE(hole.radius, 5 * mean_edge);
+      std::set<int> vertices;
+      for (int f : hole.removed_faces) {
+        EXPECT_TRUE(used_faces.insert(f).second) << "face " << f << " removed twice";
+        for (int v : sphere().triangles[f]) {
+          vertices.insert(v);
+          // Geodesic distance along edges is at least the straight one.
+          EXPECT_LT((sphere().positions[v] - sphere().positions[hole.centre]).norm(), hole.radius);
+        }
+      }
+      for (int v : vertices) EXPECT_TRUE(used_vertices.insert(v).second) << "vertex " << v;
+      const Mesh disk = extract_faces(sphere(), hole.removed_faces);
+      const MeshTopology topology = build_topology(disk);
+      EXPECT_EQ(disk.vertex_count() - static_cast<int>(topology.edges.size()) + disk.face_count(),
+                1);
+      EXPECT_EQ(find_holes(disk, topology).loops.size(), 1u);
+      removed += hole.removed_faces.size();
+    }
+    EXPECT_EQ(result.mesh.face_count() + removed, sphere().triangles.size());
+  }
+}
+
+// original_vertex maps each kept vertex to an input vertex with the same position, in increasing
+// order; the kept faces are the input's faces in their order, renumbered; the vertices dropped are
+// exactly the inner vertices of the removed disks.
+TEST(PunchHoles, OriginalVertexMapsBackToTheInput) {
+  const PunchResult result = punch_holes(sphere(), options_with_seed(4));
+  ASSERT_EQ(result.original_vertex.size(), result.mesh.positions.size());
+  EXPECT_TRUE(std::is_sorted(result.original_vertex.begin(), result.original_vertex.end()));
+  for (int v = 0; v < result.mesh.vertex_count(); ++v) {
+    const Vec3& input = sphere().positions[result.original_vertex[v]];
+    EXPECT_EQ(std::memcmp(input.data(), result.mesh.positions[v].data(), sizeof(Vec3)), 0);
+  }
+  std::set<int> removed;
+  for (const PunchedHole& hole : result.holes)
+    removed.insert(hole.removed_faces.begin(), hole.removed_faces.end());
+  std::vector<Triangle> expected;
+  std::set<int> kept_vertices;
+  for (int f = 0; f < static_cast<int>(sphere().triangles.size()); ++f) {
+    if (removed.count(f)) continue;
+    expected.push_back(sphere().triangles[f]);
+    kept_vertices.insert(expected.back().begin(), expected.back().end());
+  }
+  ASSERT_EQ(result.mesh.triangles.size(), expected.size());
+  for (size_t f = 0; f < expected.size(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(result.original_vertex[result.mesh.triangles[f][k]], expected[f][k]);
+    }
+  }
+  EXPECT_EQ(std::set<int>(result.original_vertex.begin(), result.original_vertex.end()),
+            kept_vertices);
+}
+
+// Bad radii are refused; a mesh without vertices too.
+TEST(PunchHoles, RefusesBadOptions) {
+  PunchOptions options;
+  options.min_radius = 0;
+  EXPECT_THROW(punch_holes(sphere(), options), InvalidInput);
+  options.min_radius = 4;
+  options.max_radius = 3;
+  EXPECT_THROW(punch_holes(sphere(), options), InvalidInput);
+  EXPECT_THROW(punch_holes(Mesh(), PunchOptions()), InvalidInput);
+}
+
+// extract_faces renumbers vertices in first-use order and keeps positions and orientation.
+TEST(ExtractFaces, RenumbersInFirstUseOrder) {
+  const Mesh cube = testing::make_cube();
+  // Faces 3 = {5, 7, 6} and 2 = {4, 5, 6}, in that order: 5 → 0, 7 → 1, 6 → 2, 4 → 3.
+  const Mesh top = extract_faces(cube, {3, 2});
+  ASSERT_EQ(top.vertex_count(), 4);
+  EXPECT_EQ(top.triangles, (std::vector<Triangle>{{0, 1, 2}, {3, 0, 2}}));
+  EXPECT_EQ(top.positions[0], cube.positions[5]);
+  EXPECT_EQ(top.positions[1], cube.positions[7]);
+  EXPECT_EQ(top.positions[2], cube.positions[6]);
+  EXPECT_EQ(top.positions[3], cube.positions[4]);
+  EXPECT_EQ(top.face_hole, std::vector<int>(2, kOriginal));
+  EXPECT_EQ(extract_faces(cube, {}).vertex_count(), 0);
+}
+
+}  // namespace
+}  // namespace rangefill
