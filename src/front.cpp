@@ -168,7 +168,8 @@ class Front {
     return true;
   }
 
-  // Cuts the ear at front vertex v: the triangle (next, v, prev) joins the fill, v leaves the front.
+  // Cuts the ear at front vertex v: the triangle (next, v, prev) joins the fill, v leaves the
+  // front.
   void clip(int v) {
     const int u = prev_[v], w = next_[v];
     add_triangle({w, v, u});
