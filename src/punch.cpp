@@ -85,6 +85,12 @@ bool is_simple_disk(const Mesh& mesh, const std::vector<int>& faces) {
 
 }  // namespace
 
+std::uint64_t seed_for_mesh(std::uint64_t seed, const std::string& name) {
+  std::uint64_t hash = 1469598103934665603ull;
+  for (unsigned char c : name) hash = (hash ^ c) * 1099511628211ull;
+  return seed ^ hash;
+}
+
 Mesh extract_faces(const Mesh& mesh, const std::vector<int>& faces) {
   std::vector<int> new_index(mesh.vertex_count(), -1);
   std::vector<Vec3> positions;

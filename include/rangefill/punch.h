@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "rangefill/mesh.h"
@@ -36,6 +37,10 @@ struct PunchResult {
 /// exactly one boundary loop without a repeated vertex, and if it stays `separation`·d_m away from
 /// the holes already made. The remaining vertices keep their order.
 PunchResult punch_holes(const Mesh& mesh, const PunchOptions& options);
+
+/// The seed `rangefill bench` punches a mesh named `name` with: `seed` mixed with an FNV-1a hash of
+/// the name, so each mesh gets its own holes and adding a mesh changes no other mesh's.
+std::uint64_t seed_for_mesh(std::uint64_t seed, const std::string& name);
 
 /// The faces `faces` of `mesh` as a mesh of their own (vertices renumbered in first-use order).
 Mesh extract_faces(const Mesh& mesh, const std::vector<int>& faces);

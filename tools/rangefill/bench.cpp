@@ -60,13 +60,6 @@ std::vector<fs::path> mesh_files(const std::vector<std::string>& arguments) {
   return files;
 }
 
-// FNV-1a of the file name: each mesh gets its own stream of holes, stable when meshes are added.
-std::uint64_t name_hash(const std::string& name) {
-  std::uint64_t hash = 1469598103934665603ull;
-  for (unsigned char c : name) hash = (hash ^ c) * 1099511628211ull;
-  return hash;
-}
-
 double median(std::vector<double> values) {
   if (values.empty()) return 0;
   std::sort(values.begin(), values.end());
@@ -108,7 +101,7 @@ int run_bench(const BenchCommand& command) {
     const Mesh original = load_mesh(file.string());
     const double mean_edge = mean_edge_length(original);
     PunchOptions punch = command.punch;
-    punch.seed = command.punch.seed ^ name_hash(file.filename().string());
+    punch.seed = seed_for_mesh(command.punch.seed, file.filename().string());
     const PunchResult punched = punch_holes(original, punch);
     const std::string stem = file.stem().string();
     if (!command.save.empty()) {
