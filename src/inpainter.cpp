@@ -4,6 +4,7 @@
 
 #include <opencv2/photo.hpp>
 
+#include "../filters/harmonic.h"
 #include "../filters/opencv_inpaint.h"
 #include "rangefill/errors.h"
 
@@ -27,6 +28,7 @@ const std::vector<Registration>& registry() {
        [](const InpainterOptions& o) {
          return std::make_unique<OpenCvInpainter>(cv::INPAINT_NS, o.radius);
        }},
+      {"harmonic", [](const InpainterOptions&) { return std::make_unique<HarmonicInpainter>(); }},
   };
   return backends;
 }

@@ -4,6 +4,7 @@
 // workaround goes or when OpenCV fixes the bug and the workaround can go).
 #include "rangefill/inpainter.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -27,18 +28,21 @@ double max_error_in(const cv::Mat& out, double expected, const cv::Mat& mask) {
 
 // The registry knows "telea" and "ns", in that order, and makes back-ends of those names.
 TEST(MakeInpainter, MakesTheNamedBackends) {
-  EXPECT_EQ(inpainter_names(), (std::vector<std::string>{"telea", "ns"}));
+  const std::vector<std::string> names = inpainter_names();
+  for (const char* expected : {"telea", "ns", "harmonic"}) {
+    EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
+  }
   for (const std::string& name : inpainter_names()) EXPECT_EQ(make_inpainter(name)->name(), name);
 }
 
 // An unknown name throws InvalidInput naming it and listing the known ones.
 TEST(MakeInpainter, UnknownNameThrowsListingTheKnownOnes) {
   try {
-    make_inpainter("foe");
+    make_inpainter("no-such-back-end");
     FAIL() << "no exception";
   } catch (const InvalidInput& error) {
     const std::string message = error.what();
-    EXPECT_NE(message.find("'foe'"), std::string::npos) << message;
+    EXPECT_NE(message.find("'no-such-back-end'"), std::string::npos) << message;
     EXPECT_NE(message.find("telea, ns"), std::string::npos) << message;
   }
   EXPECT_THROW(make_inpainter("Telea"), InvalidInput);  // names are exact
@@ -200,6 +204,50 @@ TEST(Inpaint, LinearRampIsReproducedApproximately) {
     EXPECT_LT(worst, 0.12) << name;
     EXPECT_LT(sum / cv::countNonZero(mask), 0.06) << name;
   }
+}
+
+}  // namespace
+}  // namespace rangefill
+
+namespace rangefill {
+namespace {
+
+// The 5-point Laplacian of x² − y² is zero: the harmonic fill reproduces it to rounding.
+TEST(Harmonic, ReproducesAHarmonicFunction) {
+  const int n = 41;
+  cv::Mat image(n, n, CV_32F), mask = cv::Mat::zeros(n, n, CV_8U);
+  for (int r = 0; r < n; ++r) {
+    for (int c = 0; c < n; ++c) {
+      const double x = (c - 20) / 20.0, y = (r - 20) / 20.0;
+      image.at<float>(r, c) = static_cast<float>(x * x - y * y);
+      if (x * x + y * y < 0.25) mask.at<std::uint8_t>(r, c) = 255;
+    }
+  }
+  cv::Mat input = image.clone(), out;
+  input.setTo(0, mask);
+  make_inpainter("harmonic")->inpaint(input, mask, out);
+  double worst = 0;
+  for (int r = 0; r < n; ++r) {
+    for (int c = 0; c < n; ++c) {
+      if (mask.at<std::uint8_t>(r, c)) {
+        worst = std::max(worst, std::abs(out.at<float>(r, c) - image.at<float>(r, c)) * 1.0);
+      }
+    }
+  }
+  EXPECT_LT(worst, 1e-5);
+}
+
+// Neumann at the border: a mask reaching the image edge is filled by the known side alone.
+TEST(Harmonic, BorderIsAFreeEdge) {
+  cv::Mat image(8, 8, CV_32F, cv::Scalar(3)), mask = cv::Mat::zeros(8, 8, CV_8U), out;
+  mask(cv::Rect(0, 4, 8, 4)) = 255;  // the lower half, down to the border
+  make_inpainter("harmonic")->inpaint(image, mask, out);
+  for (int r = 4; r < 8; ++r) {
+    for (int c = 0; c < 8; ++c) EXPECT_NEAR(out.at<float>(r, c), 3.0f, 1e-6);
+  }
+  mask.setTo(255);  // nothing known
+  make_inpainter("harmonic")->inpaint(image, mask, out);
+  EXPECT_EQ(cv::countNonZero(out), 0);
 }
 
 }  // namespace
