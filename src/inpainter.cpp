@@ -4,6 +4,7 @@
 
 #include <opencv2/photo.hpp>
 
+#include "../filters/foe.h"
 #include "../filters/harmonic.h"
 #include "../filters/opencv_inpaint.h"
 #include "rangefill/errors.h"
@@ -29,6 +30,10 @@ const std::vector<Registration>& registry() {
          return std::make_unique<OpenCvInpainter>(cv::INPAINT_NS, o.radius);
        }},
       {"harmonic", [](const InpainterOptions&) { return std::make_unique<HarmonicInpainter>(); }},
+      {"foe",
+       [](const InpainterOptions& o) {
+         return std::make_unique<FoeInpainter>(load_foe_model(o.model));
+       }},
   };
   return backends;
 }

@@ -12,7 +12,8 @@
 namespace rangefill {
 
 struct InpainterOptions {
-  double radius = 5;  // neighbourhood radius in pixels (telea, ns)
+  double radius = 5;                 // neighbourhood radius in pixels (telea, ns)
+  std::string model = "roth-black";  // foe: a shipped model's name or a model file
 };
 
 /// A back-end. inpaint(depth, mask, out): `depth` is CV_32FC1; `mask` is CV_8UC1 of the same size,
