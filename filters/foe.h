@@ -1,53 +1,10 @@
-// "foe": a Fields-of-Experts prior (Roth & Black) and MAP inpainting under it. The image x is
-// scored by E(x) = Σ_i α_i Σ_c log(1 + ½ (s·J_i ⋆ x)_c²) over the cliques c where the s×s filter
-// J_i lies inside the image (⋆: correlation, s: the model's input scale); the masked pixels are the
-// unknowns, the others stay fixed.
+// "foe": MAP inpainting under a Fields-of-Experts prior (rangefill/foe.h).
 #pragma once
 
-#include <string>
-#include <string_view>
-#include <vector>
-
-#include <opencv2/core.hpp>
-
+#include "rangefill/foe.h"
 #include "rangefill/inpainter.h"
 
 namespace rangefill {
-
-/// A fitted FoE model. Written and read as OpenCV FileStorage YAML (see models/README.md); Roth &
-/// Black's ASCII `.foe` files are read too.
-struct FoeModel {
-  static constexpr int kFormatVersion = 1;
-  std::string name;
-  int size = 3;                  // filters are size × size, size odd
-  std::vector<cv::Mat> filters;  // CV_64F correlation kernels, one per expert
-  std::vector<double> alphas;    // α_i > 0
-  double input_scale = 1;        // the model sees input_scale · x
-  std::string normalisation;     // what x is expected to be
-  std::string training;          // what data and loss fitted it, and the command
-
-  int count() const { return static_cast<int>(filters.size()); }
-};
-
-/// Parses a model from YAML text or from Roth & Black's `.foe` format (told apart by content);
-/// `name` names it in messages. Throws InvalidInput on malformed text.
-FoeModel parse_foe_model(std::string_view text, const std::string& name);
-
-/// The YAML text of a model (parse_foe_model reads it back exactly: numbers in shortest round-trip
-/// form).
-std::string serialize_foe_model(const FoeModel& model);
-
-/// A model shipped with the library, by name: "depth" (fitted on depth patches by
-/// `rangefill train-foe`), "roth-black" (Roth & Black's 5×5 natural-image filters, scaled to
-/// inputs in [0, 1]); or a model file's path. Throws InvalidInput otherwise.
-FoeModel load_foe_model(const std::string& name_or_path);
-
-/// The names load_foe_model knows without a path.
-std::vector<std::string> shipped_foe_models();
-
-/// E(x) for x CV_64F; when `gradient` is given it receives ∇E (CV_64F, the size of x):
-/// Σ_i s·J_i^T ψ_i(y_i), ψ_i(y) = α_i y / (1 + y²/2), J_i^T the adjoint of the valid correlation.
-double foe_energy(const FoeModel& model, const cv::Mat& x, cv::Mat* gradient = nullptr);
 
 struct FoeInferenceOptions {
   int max_iterations = 200;          // L-BFGS iterations

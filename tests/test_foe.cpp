@@ -1,3 +1,4 @@
+#include "rangefill/foe.h"
 #include "foe.h"
 
 #include <cmath>

@@ -1,0 +1,46 @@
+// Depth patches cut from meshes the way the repair pipeline sees a hole's surroundings, and holes
+// punched into them: the data back-ends are trained and compared on.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "rangefill/mesh.h"
+#include "rangefill/trend.h"
+
+namespace rangefill {
+
+struct PatchOptions {
+  int size = 32;       // patches are size × size pixels
+  int count = 40;      // patches wanted from the mesh
+  double beta = 0.87;  // grid step q = β·d_m, as in the pipeline (eq. 6)
+  std::uint64_t seed = 1;
+  int attempts = 20;  // random centres tried per patch wanted
+};
+
+/// Depth patches of `mesh`: around a random vertex, the faces within the patch's reach are seen
+/// along their area-weighted normal and rasterised with the pipeline's code (rasterize_zone,
+/// fill_small_gaps, eq. 7–8 normalisation over the zone), and the central size × size pixels are
+/// kept when every one of them is known and no face there is seen from behind. CV_32F each.
+/// Deterministic for a seed; may return fewer than asked.
+std::vector<cv::Mat> depth_patches(const Mesh& mesh, const PatchOptions& options);
+
+/// A random blob mask: the union of 1–4 ellipses covering between min_fraction and max_fraction
+/// of the patch, kept `margin` pixels from its border. CV_8U, 255 = to restore.
+cv::Mat blob_mask(cv::Size size, double min_fraction, double max_fraction, int margin,
+                  std::uint64_t seed);
+
+/// One patch with a hole, as a back-end receives it in the pipeline: the depth minus the trend
+/// fitted around the hole (trend.h), the hole's pixels to be restored.
+struct HoleSample {
+  cv::Mat truth;  // CV_64F: the residual everywhere, the answer at the masked pixels
+  cv::Mat mask;   // CV_8U: 255 at the pixels to restore
+};
+
+/// The sample of `patch` (CV_32F) with `mask`, the trend fitted like RepairOptions' defaults.
+HoleSample make_hole_sample(const cv::Mat& patch, const cv::Mat& mask,
+                            TrendKind trend = TrendKind::quadric, double ring = 3);
+
+}  // namespace rangefill
