@@ -47,14 +47,19 @@ ReadResult parse_mesh(std::string_view bytes, MeshFormat format, const std::stri
   return result;
 }
 
-ReadResult read_mesh(const fs::path& path) {
-  const MeshFormat format = format_from_extension(path);
+std::string read_file(const fs::path& path) {
   std::ifstream file(path, std::ios::binary);
   if (!file) throw IoError(path.string() + ": cannot open: " + std::strerror(errno));
   std::error_code error;
   if (fs::is_directory(path, error)) throw IoError(path.string() + ": is a directory");
   std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
   if (file.bad()) throw IoError(path.string() + ": read error");
+  return bytes;
+}
+
+ReadResult read_mesh(const fs::path& path) {
+  const MeshFormat format = format_from_extension(path);
+  const std::string bytes = read_file(path);
   if (bytes.empty()) throw InvalidInput(path.string() + ": file is empty");
   return parse_mesh(bytes, format, path.string());
 }
@@ -73,10 +78,7 @@ std::string serialize_mesh(const Mesh& mesh, MeshFormat format, const WriteOptio
   return {};
 }
 
-namespace {
-
-// Writes all of `bytes` to a fresh file beside `path` and renames it over `path`.
-void write_atomically(const std::string& bytes, const fs::path& path) {
+void write_file_atomically(const std::string& bytes, const fs::path& path) {
   static std::atomic<unsigned> counter{0};
   const fs::path directory = path.has_parent_path() ? path.parent_path() : fs::path(".");
   const fs::path temporary =
@@ -104,11 +106,9 @@ void write_atomically(const std::string& bytes, const fs::path& path) {
   }
 }
 
-}  // namespace
-
 void write_mesh(const Mesh& mesh, const fs::path& path, const WriteOptions& options) {
   validate_mesh(mesh, path.string());
-  write_atomically(serialize_mesh(mesh, format_from_extension(path), options), path);
+  write_file_atomically(serialize_mesh(mesh, format_from_extension(path), options), path);
 }
 
 namespace detail {

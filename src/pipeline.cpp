@@ -1,19 +1,18 @@
 #include "rangefill/pipeline.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <map>
 #include <mutex>
 #include <numeric>
 #include <optional>
 #include <set>
-#include <thread>
 #include <unordered_map>
 
 #include "rangefill/complex_hole.h"
 #include "rangefill/errors.h"
 #include "rangefill/front.h"
+#include "rangefill/parallel.h"
 
 namespace rangefill {
 
@@ -52,24 +51,6 @@ bool within_size_limits(const BoundaryLoop& loop, const RepairOptions& options) 
   return (options.max_hole_edges <= 0 ||
           static_cast<int>(loop.vertices.size()) <= options.max_hole_edges) &&
          (options.max_hole_area <= 0 || loop.area <= options.max_hole_area);
-}
-
-// Runs task(i) for i in [0, count) on `threads` threads.
-template <typename Task>
-void parallel_for(int count, int threads, Task task) {
-  threads = std::clamp(threads, 1, std::max(1, count));
-  if (threads == 1) {
-    for (int i = 0; i < count; ++i) task(i);
-    return;
-  }
-  std::atomic<int> next{0};
-  std::vector<std::thread> workers;
-  for (int t = 0; t < threads; ++t) {
-    workers.emplace_back([&] {
-      for (int i = next++; i < count; i = next++) task(i);
-    });
-  }
-  for (std::thread& worker : workers) worker.join();
 }
 
 // A fill triangle meets a face of the surface or a non-adjacent fill triangle.

@@ -32,6 +32,13 @@ ReadResult read_mesh(const std::filesystem::path& path);
 /// file.
 ReadResult parse_mesh(std::string_view bytes, MeshFormat format, const std::string& name);
 
+/// The whole content of a file. Throws IoError when it cannot be opened or read, or is a directory.
+std::string read_file(const std::filesystem::path& path);
+
+/// Writes `bytes` to a fresh temporary file beside `path`, then renames it over `path`, so that a
+/// failure leaves no partial file and a reader never sees one. Throws IoError.
+void write_file_atomically(const std::string& bytes, const std::filesystem::path& path);
+
 enum class Encoding { binary, ascii };
 
 struct WriteOptions {
