@@ -312,22 +312,25 @@ cv::Mat read_mask_image(const fs::path& path) {
   return decode_single_channel(path) != 0;
 }
 
+bool is_depth_image_path(const fs::path& path) {
+  const std::string extension = lower_extension(path);
+  return extension == ".png" || extension == ".tif" || extension == ".tiff" || extension == ".exr";
+}
+
 void check_depth_format(const fs::path& path, int type) {
   check_depth_type(type, path.string());
+  if (!is_depth_image_path(path)) {
+    throw InvalidInput(path.string() + ": unknown depth image format '" +
+                       path.extension().string() + "' (expected .png, .tif, .tiff or .exr)");
+  }
   const std::string extension = lower_extension(path);
-  if (extension == ".png") {
-    if (type != CV_16UC1) {
-      throw InvalidInput(path.string() +
-                         ": PNG holds 16-bit depth only; write float depth to .tif or .exr");
-    }
-  } else if (extension == ".exr") {
-    if (type != CV_32FC1) {
-      throw InvalidInput(path.string() +
-                         ": EXR holds float depth only; write 16-bit depth to .png or .tif");
-    }
-  } else if (extension != ".tif" && extension != ".tiff") {
-    throw InvalidInput(path.string() + ": unknown depth image format '" + extension +
-                       "' (expected .png, .tif, .tiff or .exr)");
+  if (extension == ".png" && type != CV_16UC1) {
+    throw InvalidInput(path.string() +
+                       ": PNG holds 16-bit depth only; write float depth to .tif or .exr");
+  }
+  if (extension == ".exr" && type != CV_32FC1) {
+    throw InvalidInput(path.string() +
+                       ": EXR holds float depth only; write 16-bit depth to .png or .tif");
   }
 }
 

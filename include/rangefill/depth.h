@@ -88,6 +88,10 @@ cv::Mat read_depth_image(const std::filesystem::path& path);
 /// Reads a mask image of any depth, one channel: CV_8UC1, 255 where the file is non-zero.
 cv::Mat read_mask_image(const std::filesystem::path& path);
 
+/// True when the extension of `path` (any case) is one of the depth image formats: .png, .tif,
+/// .tiff, .exr.
+bool is_depth_image_path(const std::filesystem::path& path);
+
 /// Throws InvalidInput naming `path` unless its extension (.png, .tif, .tiff, .exr) can hold depth
 /// of `type`: PNG CV_16UC1, TIFF both, EXR CV_32FC1.
 void check_depth_format(const std::filesystem::path& path, int type);
