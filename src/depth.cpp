@@ -203,6 +203,11 @@ DepthFillStats fill_depth(cv::InputArray depth_in, cv::InputArray mask_in, cv::O
     }
     to_fill = mask_in.getMat() != 0;
   }
+  if (!(options.discontinuity > 0) || options.margin < 1 || options.max_hole_pixels < 0) {
+    throw InvalidInput(
+        "fill_depth: discontinuity must be positive, margin at least 1 and "
+        "max_hole_pixels not negative");
+  }
   const std::unique_ptr<Inpainter> inpainter =
       make_inpainter(options.inpainter, options.inpainting);
   const cv::Mat z = metres(depth);

@@ -254,6 +254,14 @@ TEST(FillDepth, RefusesBadArguments) {
   DepthFillOptions options;
   options.inpainter = "no-such-back-end";
   EXPECT_THROW(fill_depth(depth, cv::noArray(), out, options), InvalidInput);
+  for (const auto& spoil : std::vector<std::function<void(DepthFillOptions&)>>{
+           [](DepthFillOptions& o) { o.discontinuity = 0; },
+           [](DepthFillOptions& o) { o.margin = 0; },
+           [](DepthFillOptions& o) { o.max_hole_pixels = -1; }}) {
+    DepthFillOptions bad;
+    spoil(bad);
+    EXPECT_THROW(fill_depth(depth, cv::noArray(), out, bad), InvalidInput);
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -51,8 +51,9 @@ struct DepthFillStats {
 /// CV_8UC1 of the same size, non-zero to fill (whatever their depth); empty (cv::noArray()) takes
 /// every invalid pixel. `filled` receives an image of the depth's type and size: every pixel
 /// outside the filled holes as given, bit for bit; 16-bit fills rounded to the millimetre. Invalid
-/// pixels outside the mask are never read as data. Deterministic. Throws InvalidInput on a bad type
-/// or size, with a one-line message.
+/// pixels outside the mask are never read as data. Deterministic. Throws InvalidInput, with a
+/// one-line message, on a bad type or size, an unknown back-end or options out of range
+/// (discontinuity ≤ 0, margin < 1, max_hole_pixels < 0).
 ///
 /// Each hole (a connected component of the mask, 8-neighbourhood) is filled on its own, from a
 /// window of `margin` pixels around it. Its rim is the valid pixels 8-adjacent to it.
