@@ -17,13 +17,16 @@ namespace {
 // E as a function of the masked pixels of a crop (the rest fixed), for Ceres.
 class MaskedEnergy : public ceres::FirstOrderFunction {
  public:
-  MaskedEnergy(const FoeModel& model, cv::Mat image, std::vector<cv::Point> unknowns)
-      : model_(model), image_(std::move(image)), unknowns_(std::move(unknowns)) {}
+  MaskedEnergy(const FoeModel& model, cv::Mat image, cv::Mat mask, std::vector<cv::Point> unknowns)
+      : model_(model),
+        image_(std::move(image)),
+        mask_(std::move(mask)),
+        unknowns_(std::move(unknowns)) {}
 
   bool Evaluate(const double* parameters, double* cost, double* gradient) const override {
     for (size_t k = 0; k < unknowns_.size(); ++k) image_.at<double>(unknowns_[k]) = parameters[k];
     cv::Mat full_gradient;
-    *cost = foe_energy(model_, image_, gradient ? &full_gradient : nullptr);
+    *cost = foe_energy_of_unknowns(model_, image_, mask_, gradient ? &full_gradient : nullptr);
     if (gradient) {
       for (size_t k = 0; k < unknowns_.size(); ++k) {
         gradient[k] = full_gradient.at<double>(unknowns_[k]);
@@ -36,6 +39,7 @@ class MaskedEnergy : public ceres::FirstOrderFunction {
  private:
   const FoeModel& model_;
   mutable cv::Mat image_;  // the crop; Evaluate writes the unknowns into it
+  cv::Mat mask_;           // the crop's mask
   std::vector<cv::Point> unknowns_;
 };
 
@@ -57,8 +61,9 @@ void FoeInpainter::inpaint(cv::InputArray depth_in, cv::InputArray mask_in,
   crop.width += 2 * margin;
   crop.height += 2 * margin;
   crop &= cv::Rect(0, 0, depth.cols, depth.rows);
+  const double divisor = foe_input_divisor(model_, start(crop), mask(crop));
   cv::Mat image;
-  start(crop).convertTo(image, CV_64F);
+  start(crop).convertTo(image, CV_64F, 1.0 / divisor);
   std::vector<cv::Point> unknowns;
   std::vector<double> parameters;
   for (int row = 0; row < crop.height; ++row) {
@@ -75,13 +80,14 @@ void FoeInpainter::inpaint(cv::InputArray depth_in, cv::InputArray mask_in,
   options.function_tolerance = options_.function_tolerance;
   options.logging_type = ceres::SILENT;
   ceres::GradientProblemSolver::Summary summary;
-  ceres::GradientProblem problem(new MaskedEnergy(model_, image.clone(), unknowns));
+  ceres::GradientProblem problem(
+      new MaskedEnergy(model_, image.clone(), mask(crop).clone(), unknowns));
   ceres::Solve(options, problem, parameters.data(), &summary);
 
   cv::Mat result = out.getMat();
   for (size_t k = 0; k < unknowns.size(); ++k) {
     const cv::Point p = unknowns[k] + crop.tl();
-    result.at<float>(p) = static_cast<float>(parameters[k]);
+    result.at<float>(p) = static_cast<float>(parameters[k] * divisor);
   }
 }
 

@@ -13,7 +13,8 @@ struct FoeInferenceOptions {
 
 /// MAP inpainting: minimises E over the masked pixels with L-BFGS (Ceres' GradientProblemSolver),
 /// starting from the harmonic fill, on the mask's bounding box grown by the filter footprint (the
-/// only cliques that change). Known pixels are returned exactly.
+/// only cliques that change), inputs divided by foe_input_divisor. Known pixels are returned
+/// exactly.
 class FoeInpainter : public Inpainter {
  public:
   explicit FoeInpainter(FoeModel model, const FoeInferenceOptions& options = {});

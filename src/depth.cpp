@@ -121,9 +121,10 @@ cv::Mat fill_source(const cv::Mat& z, const cv::Mat& data, const cv::Mat& hole,
   rim_mask &= data;
   std::vector<cv::Point> rim;
   cv::findNonZero(rim_mask, rim);
+  if (rim.empty()) return {};
   const std::vector<bool> front = occluding(z, data, hole, rim, discontinuity);
   at_edge = std::find(front.begin(), front.end(), true) != front.end();
-  if (rim.empty() || !at_edge) return rim.empty() ? cv::Mat() : data;
+  if (!at_edge) return data;
 
   cv::Mat distance, nearest;
   cv::distanceTransform(rim_mask == 0, distance, nearest, cv::DIST_L2, cv::DIST_MASK_5,

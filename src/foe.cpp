@@ -1,6 +1,7 @@
 #include "rangefill/foe.h"
 
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <sstream>
 
@@ -43,6 +44,10 @@ FoeModel parse_roth_black(std::string_view text, const std::string& name) {
       }
       filter.at<double>(ys[k], xs[k]) = value;
     }
+    // The filters were learned in a basis without the constant function, but the printed taps sum
+    // to up to 1e-3 of their magnitude: remove that mean, or a constant image is not a minimiser
+    // (at grey-level scale a flat 0.25 would read as responses of 0.5).
+    filter -= cv::mean(filter)[0];
     model.filters.push_back(filter);
   }
   if (!in) malformed(name, "truncated FoE file");
@@ -84,6 +89,7 @@ FoeModel parse_foe_model(std::string_view text, const std::string& name) {
     model.size = (int)storage["filter_size"];
     const int count = (int)storage["filter_count"];
     storage["input_scale"] >> model.input_scale;
+    model.known_rms = (int)storage["known_rms"] != 0;
     storage["normalisation"] >> model.normalisation;
     storage["training"] >> model.training;
     cv::Mat alphas, filters;
@@ -114,6 +120,7 @@ std::string serialize_foe_model(const FoeModel& model) {
   storage << "filter_size" << model.size;
   storage << "filter_count" << model.count();
   storage << "input_scale" << model.input_scale;
+  storage << "known_rms" << static_cast<int>(model.known_rms);
   storage << "normalisation" << model.normalisation;
   storage << "training" << model.training;
   storage << "alphas" << cv::Mat(model.alphas, true).reshape(1, 1);
@@ -147,35 +154,143 @@ FoeModel load_foe_model(const std::string& name_or_path) {
   return parse_foe_model(text, name_or_path);
 }
 
-double foe_energy(const FoeModel& model, const cv::Mat& x, cv::Mat* gradient) {
-  CV_Assert(x.type() == CV_64FC1);
-  const int r = model.size / 2;
-  if (gradient) *gradient = cv::Mat::zeros(x.size(), CV_64F);
-  if (x.rows <= 2 * r || x.cols <= 2 * r) return 0;
-  const cv::Rect valid(r, r, x.cols - 2 * r, x.rows - 2 * r);  // cliques inside the image
-  double energy = 0;
-  cv::Mat response, influence = cv::Mat::zeros(x.size(), CV_64F), back;
-  for (int i = 0; i < model.count(); ++i) {
-    const cv::Mat kernel = model.filters[i] * model.input_scale;
-    cv::filter2D(x, response, CV_64F, kernel, cv::Point(-1, -1), 0, cv::BORDER_REPLICATE);
-    const double alpha = model.alphas[i];
-    for (int row = valid.y; row < valid.y + valid.height; ++row) {
-      const double* y = response.ptr<double>(row);
-      double* psi = influence.ptr<double>(row);
-      for (int col = valid.x; col < valid.x + valid.width; ++col) {
-        const double half_square = 0.5 * y[col] * y[col];
-        energy += alpha * std::log1p(half_square);
-        psi[col] = alpha * y[col] / (1 + half_square);
-      }
-    }
-    if (gradient) {
-      cv::Mat flipped;
-      cv::flip(kernel, flipped, -1);
-      cv::filter2D(influence, back, CV_64F, flipped, cv::Point(-1, -1), 0, cv::BORDER_CONSTANT);
-      *gradient += back;
+double foe_input_divisor(const FoeModel& model, const cv::Mat& image, const cv::Mat& mask) {
+  if (!model.known_rms) return 1;
+  cv::Mat values;
+  image.convertTo(values, CV_64F);
+  double sum = 0;  // in row order, the same whatever OpenCV's threads do
+  int count = 0;
+  for (int row = 0; row < values.rows; ++row) {
+    for (int col = 0; col < values.cols; ++col) {
+      if (mask.at<std::uint8_t>(row, col)) continue;
+      sum += values.at<double>(row, col) * values.at<double>(row, col);
+      ++count;
     }
   }
+  const double rms = count > 0 ? std::sqrt(sum / count) : 0;
+  return rms > 0 ? rms : 1;
+}
+
+namespace {
+
+// Cliques as runs of filter centres along a row: (row, first column, one past the last).
+struct CliqueRun {
+  int row, begin, end;
+};
+
+// Every clique whose filter lies inside an image of `size` (filters of radius r).
+std::vector<CliqueRun> valid_cliques(cv::Size size, int r) {
+  std::vector<CliqueRun> runs;
+  if (size.width <= 2 * r) return runs;
+  for (int row = r; row < size.height - r; ++row) runs.push_back({row, r, size.width - r});
+  return runs;
+}
+
+// The valid cliques whose filter covers at least one pixel of `mask` (the others do not change
+// when the masked pixels do).
+std::vector<CliqueRun> cliques_touching(const cv::Mat& mask, int r) {
+  cv::Mat touched;
+  cv::dilate(mask, touched, cv::Mat::ones(2 * r + 1, 2 * r + 1, CV_8U));
+  std::vector<CliqueRun> runs;
+  for (int row = r; row < mask.rows - r; ++row) {
+    const std::uint8_t* line = touched.ptr<std::uint8_t>(row);
+    for (int col = r; col < mask.cols - r;) {
+      if (!line[col]) {
+        ++col;
+        continue;
+      }
+      const int begin = col;
+      while (col < mask.cols - r && line[col]) ++col;
+      runs.push_back({row, begin, col});
+    }
+  }
+  return runs;
+}
+
+// y = J ⋆ x at the cliques of `runs`, 0 elsewhere. Plain loops that sum the taps in one order,
+// so results are the same at any thread count (cv::filter2D's are not); the inner loops vectorise.
+cv::Mat correlate(const cv::Mat& x, const cv::Mat& kernel, const std::vector<CliqueRun>& runs) {
+  const int r = kernel.rows / 2;
+  cv::Mat y = cv::Mat::zeros(x.size(), CV_64F);
+  for (const CliqueRun& run : runs) {
+    double* out = y.ptr<double>(run.row);
+    for (int dy = -r; dy <= r; ++dy) {
+      const double* in = x.ptr<double>(run.row + dy);
+      for (int dx = -r; dx <= r; ++dx) {
+        const double weight = kernel.at<double>(dy + r, dx + r);
+        for (int col = run.begin; col < run.end; ++col) out[col] += weight * in[col + dx];
+      }
+    }
+  }
+  return y;
+}
+
+// sum += Jᵀ z, z read at the cliques of `runs` only.
+void add_correlation_adjoint(const cv::Mat& z, const cv::Mat& kernel,
+                             const std::vector<CliqueRun>& runs, cv::Mat& sum) {
+  const int r = kernel.rows / 2;
+  for (const CliqueRun& run : runs) {
+    const double* in = z.ptr<double>(run.row);
+    for (int dy = -r; dy <= r; ++dy) {
+      double* out = sum.ptr<double>(run.row + dy);
+      for (int dx = -r; dx <= r; ++dx) {
+        const double weight = kernel.at<double>(dy + r, dx + r);
+        for (int col = run.begin; col < run.end; ++col) out[col + dx] += weight * in[col];
+      }
+    }
+  }
+}
+
+// E over the cliques of `runs` (Roth & Black's eq. for the FoE energy), ∇E into `gradient`.
+double energy_over(const FoeModel& model, const cv::Mat& x, const std::vector<CliqueRun>& runs,
+                   cv::Mat* gradient) {
+  if (gradient) *gradient = cv::Mat::zeros(x.size(), CV_64F);
+  double energy = 0;
+  for (int i = 0; i < model.count(); ++i) {
+    const cv::Mat kernel = model.filters[i] * model.input_scale;
+    cv::Mat y = correlate(x, kernel, runs);
+    const double alpha = model.alphas[i];
+    for (const CliqueRun& run : runs) {
+      double* line = y.ptr<double>(run.row);
+      for (int col = run.begin; col < run.end; ++col) {
+        const double half_square = 0.5 * line[col] * line[col];
+        energy += alpha * std::log1p(half_square);
+        line[col] = alpha * line[col] / (1 + half_square);  // ψ_i(y), the expert's influence
+      }
+    }
+    if (gradient) add_correlation_adjoint(y, kernel, runs, *gradient);
+  }
   return energy;
+}
+
+void check_energy_argument(const cv::Mat& x) {
+  CV_Assert(x.type() == CV_64FC1);
+}
+
+}  // namespace
+
+cv::Mat foe_response(const cv::Mat& x, const cv::Mat& kernel) {
+  check_energy_argument(x);
+  return correlate(x, kernel, valid_cliques(x.size(), kernel.rows / 2));
+}
+
+cv::Mat foe_adjoint(const cv::Mat& z, const cv::Mat& kernel) {
+  check_energy_argument(z);
+  cv::Mat sum = cv::Mat::zeros(z.size(), CV_64F);
+  add_correlation_adjoint(z, kernel, valid_cliques(z.size(), kernel.rows / 2), sum);
+  return sum;
+}
+
+double foe_energy(const FoeModel& model, const cv::Mat& x, cv::Mat* gradient) {
+  check_energy_argument(x);
+  return energy_over(model, x, valid_cliques(x.size(), model.size / 2), gradient);
+}
+
+double foe_energy_of_unknowns(const FoeModel& model, const cv::Mat& x, const cv::Mat& mask,
+                              cv::Mat* gradient) {
+  check_energy_argument(x);
+  CV_Assert(mask.type() == CV_8UC1 && mask.size() == x.size());
+  return energy_over(model, x, cliques_touching(mask, model.size / 2), gradient);
 }
 
 }  // namespace rangefill

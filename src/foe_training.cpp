@@ -40,25 +40,21 @@ std::vector<cv::Mat> dct_basis(int size) {
   return basis;
 }
 
-// y = J ⋆ x on the cliques inside the image (zero elsewhere).
-cv::Mat valid_response(const cv::Mat& x, const cv::Mat& kernel, const cv::Rect& valid) {
-  cv::Mat response, result = cv::Mat::zeros(x.size(), CV_64F);
-  cv::filter2D(x, response, CV_64F, kernel, cv::Point(-1, -1), 0, cv::BORDER_REPLICATE);
-  response(valid).copyTo(result(valid));
-  return result;
-}
-
-// J^T z: the adjoint of valid_response.
-cv::Mat adjoint(const cv::Mat& z, const cv::Mat& kernel) {
-  cv::Mat flipped, result;
-  cv::flip(kernel, flipped, -1);
-  cv::filter2D(z, result, CV_64F, flipped, cv::Point(-1, -1), 0, cv::BORDER_CONSTANT);
-  return result;
+// Σ a·b over two CV_64F images of one size, row by row: cv::Mat::dot may split the sum
+// differently when called from several threads, and the objective must not depend on them.
+double dot(const cv::Mat& a, const cv::Mat& b) {
+  double sum = 0;
+  for (int row = 0; row < a.rows; ++row) {
+    const double* x = a.ptr<double>(row);
+    const double* y = b.ptr<double>(row);
+    for (int col = 0; col < a.cols; ++col) sum += x[col] * y[col];
+  }
+  return sum;
 }
 
 // Σ_{c in valid} a[c] · b[c + offset].
 double shifted_dot(const cv::Mat& a, const cv::Mat& b, const cv::Rect& valid, cv::Point offset) {
-  return a(valid).dot(b(valid + offset));
+  return dot(a(valid), b(valid + offset));
 }
 
 // The loss of one sample and, when `gradient` is given, its derivatives with respect to the taps
@@ -69,7 +65,7 @@ double sample_loss(const FoeModel& model, double step, const HoleSample& sample,
   const cv::Rect valid(r, r, start.cols - 2 * r, start.rows - 2 * r);
   cv::Mat mask;
   sample.mask.convertTo(mask, CV_64F, 1.0 / 255);
-  const double masked = std::max(1.0, cv::sum(mask)[0]);
+  const double masked = std::max(1, cv::countNonZero(sample.mask));
 
   std::vector<cv::Mat> states{start.clone()};
   for (int t = 0; t < steps; ++t) {
@@ -78,7 +74,7 @@ double sample_loss(const FoeModel& model, double step, const HoleSample& sample,
     states.push_back(states.back() - step * mask.mul(g));
   }
   const cv::Mat difference = mask.mul(states.back() - sample.truth);
-  const double loss = 0.5 * difference.dot(difference) / masked;
+  const double loss = 0.5 * dot(difference, difference) / masked;
   if (!gradient) return loss;
 
   const int taps = size * size;
@@ -90,8 +86,8 @@ double sample_loss(const FoeModel& model, double step, const HoleSample& sample,
     for (int i = 0; i < count; ++i) {
       const cv::Mat& kernel = model.filters[i];
       const double alpha = model.alphas[i];
-      const cv::Mat y = valid_response(x, kernel, valid);
-      const cv::Mat u = valid_response(v, kernel, valid);
+      const cv::Mat y = foe_response(x, kernel);
+      const cv::Mat u = foe_response(v, kernel);
       cv::Mat phi(x.size(), CV_64F), dphi(x.size(), CV_64F);
       for (int row = 0; row < x.rows; ++row) {
         for (int col = 0; col < x.cols; ++col) {
@@ -102,16 +98,16 @@ double sample_loss(const FoeModel& model, double step, const HoleSample& sample,
       }
       const cv::Mat influence = alpha * phi;  // zero outside `valid`, as y is
       const cv::Mat w = alpha * dphi.mul(u);
-      g += adjoint(influence, kernel);
-      hessian_v += adjoint(w, kernel);
-      (*gradient)[taps * count + i] += -step * u.dot(phi);  // ∂/∂α_i
+      g += foe_adjoint(influence, kernel);
+      hessian_v += foe_adjoint(w, kernel);
+      (*gradient)[taps * count + i] += -step * dot(u, phi);  // ∂/∂α_i
       for (int k = 0; k < taps; ++k) {
         const cv::Point offset(k % size - r, k / size - r);
         (*gradient)[taps * i + k] +=
             -step * (shifted_dot(influence, v, valid, offset) + shifted_dot(w, x, valid, offset));
       }
     }
-    (*gradient)[(taps + 1) * count] += -v.dot(g);  // ∂/∂η
+    (*gradient)[(taps + 1) * count] += -dot(v, g);  // ∂/∂η
     lambda -= step * hessian_v;
   }
   return loss;
@@ -131,13 +127,36 @@ FoeObjective::FoeObjective(std::vector<HoleSample> samples, int size, int count,
   if (count < 1 || count > size * size - 1) {
     throw InvalidInput("foe training: filter count must be in [1, size² − 1]");
   }
-  for (const HoleSample& sample : samples_) {
+  // The model divides its inputs by the RMS of the known pixels (FoeModel::known_rms): so do the
+  // samples, and the loss is measured in those units.
+  FoeModel normalising;
+  normalising.known_rms = true;
+  for (HoleSample& sample : samples_) {
+    // A new buffer: `samples` shares its pixels with the caller's, and assigning a MatExpr to
+    // sample.truth would write them in place.
+    cv::Mat truth;
+    sample.truth.convertTo(truth, CV_64F,
+                           1.0 / foe_input_divisor(normalising, sample.truth, sample.mask));
+    sample.truth = truth;
     cv::Mat truth32, start32, start;
     sample.truth.convertTo(truth32, CV_32F);
     HarmonicInpainter().inpaint(truth32, sample.mask, start32);
     start32.convertTo(start, CV_64F);
     starts_.push_back(start);
   }
+  // θ holds the filters' coefficients in units of `coefficient_scale_`, chosen so that the
+  // lowest-frequency DCT filter's responses on the samples have unit spread: then the experts'
+  // heavy tails matter where the data has its largest responses, and θ is of order 1.
+  const int r = size_ / 2;
+  double sum = 0, pixels = 0;
+  for (const HoleSample& sample : samples_) {
+    const cv::Rect valid(r, r, sample.truth.cols - 2 * r, sample.truth.rows - 2 * r);
+    const cv::Mat y = foe_response(sample.truth, basis_[0]);
+    sum += dot(y, y);
+    pixels += valid.area();
+  }
+  const double spread = std::sqrt(sum / std::max(1.0, pixels));
+  coefficient_scale_ = spread > 0 ? 1.0 / spread : 1.0;
 }
 
 int FoeObjective::parameter_count() const {
@@ -150,11 +169,14 @@ FoeModel FoeObjective::model(const std::vector<double>& theta) const {
   const int functions = static_cast<int>(basis_.size());
   for (int i = 0; i < count_; ++i) {
     cv::Mat filter = cv::Mat::zeros(size_, size_, CV_64F);
-    for (int j = 0; j < functions; ++j) filter += theta[i * functions + j] * basis_[j];
+    for (int j = 0; j < functions; ++j) {
+      filter += theta[i * functions + j] * coefficient_scale_ * basis_[j];
+    }
     model.filters.push_back(filter);
     model.alphas.push_back(std::exp(theta[functions * count_ + i]));
   }
   model.input_scale = 1;
+  model.known_rms = true;
   return model;
 }
 
@@ -165,20 +187,10 @@ double FoeObjective::step(const std::vector<double>& theta) const {
 std::vector<double> FoeObjective::initial_parameters() const {
   const int functions = static_cast<int>(basis_.size());
   std::vector<double> theta(parameter_count(), 0.0);
-  const int r = size_ / 2;
   double lipschitz = 0;  // ‖H‖ ≤ Σ α_i ‖J_i‖₁² since |ψ'| ≤ 1
   for (int i = 0; i < count_; ++i) {
-    double sum = 0, pixels = 0;
-    for (const HoleSample& sample : samples_) {
-      const cv::Rect valid(r, r, sample.truth.cols - 2 * r, sample.truth.rows - 2 * r);
-      const cv::Mat y = valid_response(sample.truth, basis_[i], valid);
-      sum += y.dot(y);
-      pixels += valid.area();
-    }
-    const double spread = std::sqrt(sum / std::max(1.0, pixels));
-    const double scale = spread > 0 ? 1.0 / spread : 1.0;
-    theta[i * functions + i] = scale;
-    lipschitz += std::pow(cv::norm(basis_[i] * scale, cv::NORM_L1), 2);
+    theta[i * functions + i] = 1;
+    lipschitz += std::pow(cv::norm(basis_[i] * coefficient_scale_, cv::NORM_L1), 2);
   }
   theta.back() = -std::log(std::max(lipschitz, 1e-300));  // η = 1 / L
   return theta;
@@ -212,15 +224,16 @@ double FoeObjective::evaluate(const std::vector<double>& theta,
   for (const std::vector<double>& r : raws) {
     for (int k = 0; k < raw; ++k) total[k] += r[k] / n;
   }
-  // Chain rule to θ: taps = Σ_j β_ij B_j, α = exp(a), η = exp(log η).
+  // Chain rule to θ: taps = scale · Σ_j θ_ij B_j, α = exp(a), η = exp(log η).
   const int functions = static_cast<int>(basis_.size());
   gradient->assign(parameter_count(), 0.0);
   for (int i = 0; i < count_; ++i) {
     for (int j = 0; j < functions; ++j) {
       double sum = 0;
-      for (int k = 0; k < taps; ++k)
+      for (int k = 0; k < taps; ++k) {
         sum += total[taps * i + k] * basis_[j].at<double>(k / size_, k % size_);
-      (*gradient)[i * functions + j] = sum;
+      }
+      (*gradient)[i * functions + j] = sum * coefficient_scale_;
     }
     (*gradient)[functions * count_ + i] = total[taps * count_ + i] * foe.alphas[i];
   }
@@ -231,7 +244,8 @@ double FoeObjective::evaluate(const std::vector<double>& theta,
 cv::Mat FoeObjective::unrolled(const std::vector<double>& theta, const HoleSample& sample) const {
   const FoeModel foe = model(theta);
   cv::Mat truth32, start32, x, mask;
-  sample.truth.convertTo(truth32, CV_32F);
+  const cv::Mat truth = sample.truth / foe_input_divisor(foe, sample.truth, sample.mask);
+  truth.convertTo(truth32, CV_32F);
   HarmonicInpainter().inpaint(truth32, sample.mask, start32);
   start32.convertTo(x, CV_64F);
   sample.mask.convertTo(mask, CV_64F, 1.0 / 255);
@@ -240,7 +254,7 @@ cv::Mat FoeObjective::unrolled(const std::vector<double>& theta, const HoleSampl
     foe_energy(foe, x, &g);
     x -= step(theta) * mask.mul(g);
   }
-  return x;
+  return x * foe_input_divisor(foe, sample.truth, sample.mask);
 }
 
 namespace {
@@ -292,6 +306,7 @@ FoeTraining train_foe(const std::vector<HoleSample>& training,
   solver.line_search_direction_type = ceres::LBFGS;
   solver.max_num_iterations = options.iterations;
   solver.function_tolerance = 1e-9;
+  solver.parameter_tolerance = 1e-12;
   solver.logging_type = ceres::SILENT;
   Progress progress(options.progress);
   solver.callbacks.push_back(&progress);
@@ -304,6 +319,7 @@ FoeTraining train_foe(const std::vector<HoleSample>& training,
   result.training_loss_end = objective.evaluate(theta, nullptr);
   result.validation_loss_end = held_out.evaluate(theta, nullptr);
   result.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  result.stop = summary.message;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -80,10 +80,6 @@ std::vector<cv::Mat> depth_patches(const Mesh& mesh, const PatchOptions& options
     for (int face : zone.faces) normal += triangle_cross(mesh, face);
     if (!(normal.norm() > 0)) continue;
     normal.normalize();
-    const bool height_field = std::all_of(zone.faces.begin(), zone.faces.end(), [&](int face) {
-      return triangle_cross(mesh, face).dot(normal) > 0;
-    });
-    if (!height_field) continue;
     Frame frame;
     const Vec3 u = normal.unitOrthogonal();
     frame.rotation.row(0) = u.transpose();

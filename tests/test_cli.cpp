@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "rangefill/depth.h"
 #include "rangefill/io.h"
 #include "rangefill/metrics.h"
 #include "support.h"
@@ -157,6 +158,117 @@ TEST(Cli, RepairClosesASphereCapAndReportsJson) {
   EXPECT_EQ(border.exit_code, 0) << border.err;
   EXPECT_NE(border.err.find("--fill-all"), std::string::npos);
   EXPECT_EQ(read_mesh(dir / "same.ply").mesh.face_count(), capless.face_count());
+  fs::remove_all(dir);
+}
+
+// A 16-bit depth image: a plane at 1.5 m with a 9x9 hole at (row, col).
+cv::Mat depth_with_hole(int row, int col) {
+  cv::Mat depth(48, 64, CV_16U, cv::Scalar(1500));
+  depth(cv::Rect(col, row, 9, 9)).setTo(0);
+  return depth;
+}
+
+// `rangefill depth IN -o OUT` fills 16-bit PNG and float TIFF/EXR, refuses to write over its input,
+// and names the file in one-line errors: a mask of another size, an unreadable image.
+TEST(Cli, DepthFillsOneImage) {
+  const fs::path dir = testing::temporary_directory("cli-depth");
+  write_depth_image(depth_with_hole(10, 20), dir / "in.png");
+  const Outcome png =
+      run("depth " + (dir / "in.png").string() + " -o " + (dir / "out.png").string());
+  ASSERT_EQ(png.exit_code, 0) << png.err;
+  EXPECT_NE(png.out.find("1 holes, 1 filled (81 pixels"), std::string::npos) << png.out;
+  EXPECT_EQ(cv::countNonZero(read_depth_image(dir / "out.png") != 1500), 0);
+
+  cv::Mat metres;
+  depth_with_hole(20, 30).convertTo(metres, CV_32F, 1e-3);
+  metres.setTo(std::numeric_limits<float>::quiet_NaN(), metres == 0);
+  write_depth_image(metres, dir / "in.tif");
+  const Outcome exr = run("depth --json " + (dir / "in.tif").string() + " -o " +
+                          (dir / "out.exr").string() + " --inpainter telea");
+  ASSERT_EQ(exr.exit_code, 0) << exr.err;
+  EXPECT_EQ(nlohmann::json::parse(exr.out)["filled_pixels"].get<int>(), 81);
+  const cv::Mat filled = read_depth_image(dir / "out.exr");
+  ASSERT_EQ(filled.type(), CV_32FC1);
+  EXPECT_LT(cv::norm(filled, cv::Mat(48, 64, CV_32F, cv::Scalar(1.5f)), cv::NORM_INF), 1e-6);
+
+  const std::string before = slurp(dir / "in.png");
+  EXPECT_EQ(
+      run("depth " + (dir / "in.png").string() + " -o " + (dir / "in.png").string()).exit_code, 2);
+  EXPECT_EQ(slurp(dir / "in.png"), before);
+  EXPECT_EQ(
+      run("depth " + (dir / "in.tif").string() + " -o " + (dir / "out.png").string()).exit_code,
+      3);  // PNG cannot hold float depth
+
+  write_depth_image(cv::Mat(10, 10, CV_16U, cv::Scalar(1)), dir / "small.png");
+  const Outcome mask = run("depth " + (dir / "in.png").string() + " --mask " +
+                           (dir / "small.png").string() + " -o " + (dir / "m.png").string());
+  EXPECT_EQ(mask.exit_code, 3);
+  EXPECT_EQ(mask.err, "rangefill: " + (dir / "in.png").string() + " with mask " +
+                          (dir / "small.png").string() +
+                          ": fill_depth: mask is 10x10 but depth is 64x48\n");
+  write_bytes(dir / "bad.png", "not a PNG");
+  const Outcome bad =
+      run("depth " + (dir / "bad.png").string() + " -o " + (dir / "b.png").string());
+  EXPECT_EQ(bad.exit_code, 3);
+  EXPECT_EQ(bad.err,
+            "rangefill: " + (dir / "bad.png").string() + ": not a PNG, TIFF or EXR image\n");
+  EXPECT_FALSE(fs::exists(dir / "b.png"));
+  fs::remove_all(dir);
+}
+
+// `rangefill depth --batch`: every image of the directory, the same bytes at any thread count,
+// unreadable files skipped and reported (exit 5), shards that partition the files, and never the
+// input directory as output.
+TEST(Cli, DepthBatchFillsADirectory) {
+  const fs::path dir = testing::temporary_directory("cli-depth-batch");
+  fs::create_directories(dir / "in");
+  for (int i = 0; i < 5; ++i) {
+    write_depth_image(depth_with_hole(5 + 5 * i, 10 + 7 * i),
+                      dir / "in" / ("frame-" + std::to_string(i) + ".png"));
+  }
+  write_bytes(dir / "in" / "broken.png", "not a PNG");
+  write_bytes(dir / "in" / "notes.txt", "not an image, not looked at");
+
+  const std::string batch = "depth --batch " + (dir / "in").string() + " --out-dir ";
+  const Outcome one = run(batch + (dir / "one").string());
+  EXPECT_EQ(one.exit_code, 5);
+  EXPECT_NE(one.err.find("rangefill: skipped " + (dir / "in" / "broken.png").string() +
+                         ": not a PNG, TIFF or EXR image"),
+            std::string::npos)
+      << one.err;
+  EXPECT_NE(one.out.find("6 files (shard 0/1 of 6), 5 written"), std::string::npos) << one.out;
+  const Outcome two = run(batch + (dir / "two").string() + " --threads 2");
+  EXPECT_EQ(two.exit_code, 5);
+  for (int i = 0; i < 5; ++i) {
+    const std::string name = "frame-" + std::to_string(i) + ".png";
+    EXPECT_EQ(cv::countNonZero(read_depth_image(dir / "one" / name) != 1500), 0) << name;
+    EXPECT_EQ(slurp(dir / "one" / name), slurp(dir / "two" / name)) << name;
+  }
+
+  // Shards 0/2 and 1/2 of the six files (broken.png first): three each, none twice.
+  EXPECT_EQ(run(batch + (dir / "shards").string() + " --shard 0/2").exit_code, 5);
+  EXPECT_EQ(run(batch + (dir / "shards").string() + " --shard 1/2").exit_code, 0);
+  int written = 0;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir / "shards")) ++written;
+  EXPECT_EQ(written, 5);
+
+  EXPECT_EQ(run(batch + (dir / "in").string()).exit_code, 2);
+  EXPECT_EQ(run(batch + (dir / "x").string() + " --shard 2/2").exit_code, 2);
+  EXPECT_EQ(run(batch + (dir / "x").string() + " -o y.png").exit_code, 2);
+  fs::remove_all(dir);
+}
+
+// `rangefill depth-bench` on a rendered sphere with one back-end prints its table.
+TEST(Cli, DepthBenchMeasuresABackEnd) {
+  const fs::path dir = testing::temporary_directory("cli-depth-bench");
+  write_mesh(testing::make_sphere(8), dir / "sphere.ply");
+  const Outcome bench = run("depth-bench --meshes " + (dir / "sphere.ply").string() +
+                            " --views 1 --patterns 1 --inpainters harmonic");
+  ASSERT_EQ(bench.exit_code, 0) << bench.err;
+  EXPECT_NE(bench.out.find("rendered frames: 1"), std::string::npos) << bench.out;
+  EXPECT_NE(bench.out.find("fill_depth harmonic"), std::string::npos) << bench.out;
+  EXPECT_NE(bench.out.find("cv::inpaint telea, all invalid masked"), std::string::npos);
+  EXPECT_EQ(run("depth-bench --inpainters harmonic").exit_code, 2);
   fs::remove_all(dir);
 }
 

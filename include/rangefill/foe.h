@@ -1,7 +1,7 @@
-// Fields-of-Experts models (Roth & Black): the prior behind the "foe" back-end (filters/foe.h). The image x is
-// scored by E(x) = Σ_i α_i Σ_c log(1 + ½ (s·J_i ⋆ x)_c²) over the cliques c where the s×s filter
-// J_i lies inside the image (⋆: correlation, s: the model's input scale); the masked pixels are the
-// unknowns, the others stay fixed.
+// Fields-of-Experts models (Roth & Black): the prior behind the "foe" back-end (filters/foe.h). The
+// image x is scored by E(x) = Σ_i α_i Σ_c log(1 + ½ (s·J_i ⋆ x)_c²) over the cliques c where the
+// s×s filter J_i lies inside the image (⋆: correlation, s: the model's input scale); the masked
+// pixels are the unknowns, the others stay fixed.
 #pragma once
 
 #include <string>
@@ -9,7 +9,6 @@
 #include <vector>
 
 #include <opencv2/core.hpp>
-
 
 namespace rangefill {
 
@@ -21,7 +20,8 @@ struct FoeModel {
   int size = 3;                  // filters are size × size, size odd
   std::vector<cv::Mat> filters;  // CV_64F correlation kernels, one per expert
   std::vector<double> alphas;    // α_i > 0
-  double input_scale = 1;        // the model sees input_scale · x
+  double input_scale = 1;        // the model sees input_scale · x / divisor, where the divisor is
+  bool known_rms = false;        // the RMS of the known pixels when set, else 1
   std::string normalisation;     // what x is expected to be
   std::string training;          // what data and loss fitted it, and the command
 
@@ -44,8 +44,26 @@ FoeModel load_foe_model(const std::string& name_or_path);
 /// The names load_foe_model knows without a path.
 std::vector<std::string> shipped_foe_models();
 
-/// E(x) for x CV_64F; when `gradient` is given it receives ∇E (CV_64F, the size of x):
-/// Σ_i s·J_i^T ψ_i(y_i), ψ_i(y) = α_i y / (1 + y²/2), J_i^T the adjoint of the valid correlation.
+/// The divisor of the model's inputs for an image (any type) and its mask (CV_8U, 255 = unknown):
+/// the RMS of the known pixels when model.known_rms (1 if they are all 0), else 1.
+double foe_input_divisor(const FoeModel& model, const cv::Mat& image, const cv::Mat& mask);
+
+/// E(x) for x CV_64F (already divided by foe_input_divisor); when `gradient` is given it receives
+/// ∇E (CV_64F, the size of x): Σ_i s·J_iᵀ ψ_i(y_i), ψ_i(y) = α_i y / (1 + y²/2), y_i = s·J_i ⋆ x.
+/// The same value at any thread count.
 double foe_energy(const FoeModel& model, const cv::Mat& x, cv::Mat* gradient = nullptr);
+
+/// E(x) up to a constant of the unmasked pixels: the sum over the cliques that cover a pixel of
+/// `mask` (CV_8U, non-zero = unknown) only, which is all that inference needs; ∇E is exact at the
+/// masked pixels.
+double foe_energy_of_unknowns(const FoeModel& model, const cv::Mat& x, const cv::Mat& mask,
+                              cv::Mat* gradient = nullptr);
+
+/// J ⋆ x (correlation, kernel CV_64F of odd size) at the pixels where the kernel lies inside x,
+/// 0 elsewhere. Plain loops: the same value at any thread count, unlike cv::filter2D.
+cv::Mat foe_response(const cv::Mat& x, const cv::Mat& kernel);
+
+/// Jᵀ z, the adjoint of foe_response (z read where the kernel lies inside it).
+cv::Mat foe_adjoint(const cv::Mat& z, const cv::Mat& kernel);
 
 }  // namespace rangefill

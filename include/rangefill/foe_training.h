@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "rangefill/foe.h"
@@ -11,10 +12,12 @@
 
 namespace rangefill {
 
-/// The objective: the mean over samples of ½‖M ⊙ (x_T − truth)‖² / |M|, where x_T comes from T
+/// The objective: the mean over samples (each divided by the RMS of its known pixels, as the model
+/// will divide its inputs) of ½‖M ⊙ (x_T − truth)‖² / |M|, where x_T comes from T
 /// gradient steps x ← x − η M ⊙ ∇E(x) started at the harmonic fill of the sample. Its parameters θ:
 /// the count × (size² − 1) coefficients of the filters on the 2-D DCT basis without its constant
-/// term (so every filter has zero mean), then log α_i (count), then log η. The gradient is exact:
+/// term (so every filter has zero mean; in units that make θ of order 1), then log α_i (count),
+/// then log η. The gradient is exact:
 /// a reverse pass through the T steps (Hessian-vector products of E, no finite differences).
 class FoeObjective {
  public:
@@ -23,12 +26,12 @@ class FoeObjective {
   int parameter_count() const;
   /// The objective at θ; with `gradient`, also ∂/∂θ. Deterministic at any thread count.
   double evaluate(const std::vector<double>& theta, std::vector<double>* gradient) const;
-  /// θ of the first `count` DCT filters (lowest frequencies first), each scaled so that its
-  /// responses on the samples have unit spread; α = 1; η a stable step.
+  /// θ of the first `count` DCT filters (lowest frequencies first), all scaled so that the first
+  /// one's responses on the samples have unit spread; α = 1; η = 1 / Σ α_i ‖J_i‖₁², a stable step.
   std::vector<double> initial_parameters() const;
   FoeModel model(const std::vector<double>& theta) const;
   double step(const std::vector<double>& theta) const;
-  /// x_T for a sample: the unrolled inference the objective scores.
+  /// x_T for a sample, in the sample's units: the unrolled inference the objective scores.
   cv::Mat unrolled(const std::vector<double>& theta, const HoleSample& sample) const;
 
   int size() const { return size_; }
@@ -37,8 +40,9 @@ class FoeObjective {
 
  private:
   std::vector<HoleSample> samples_;
-  std::vector<cv::Mat> starts_;  // harmonic fills, CV_64F
-  std::vector<cv::Mat> basis_;   // size × size DCT functions without the constant one
+  std::vector<cv::Mat> starts_;   // harmonic fills, CV_64F
+  std::vector<cv::Mat> basis_;    // size × size DCT functions without the constant one
+  double coefficient_scale_ = 1;  // the unit of the filter coefficients in θ
   int size_, count_, steps_, threads_;
 };
 
@@ -59,6 +63,7 @@ struct FoeTraining {
   double validation_loss_start = 0, validation_loss_end = 0;
   int iterations = 0;
   double seconds = 0;
+  std::string stop;  // why L-BFGS stopped (Ceres' message)
 };
 
 /// Fits θ by L-BFGS (Ceres' GradientProblemSolver) on `training`; scores `validation` at the start

@@ -23,7 +23,8 @@ struct PatchOptions {
 /// Depth patches of `mesh`: around a random vertex, the faces within the patch's reach are seen
 /// along their area-weighted normal and rasterised with the pipeline's code (rasterize_zone,
 /// fill_small_gaps, eq. 7–8 normalisation over the zone), and the central size × size pixels are
-/// kept when every one of them is known and no face there is seen from behind. CV_32F each.
+/// kept when every one of them is known (faces seen from behind are not drawn, the nearest surface
+/// wins). CV_32F each.
 /// Deterministic for a seed; may return fewer than asked.
 std::vector<cv::Mat> depth_patches(const Mesh& mesh, const PatchOptions& options);
 

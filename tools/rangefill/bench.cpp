@@ -29,37 +29,6 @@ struct BenchCommand {
   bool json = false;
 };
 
-std::vector<std::string> split(const std::string& text) {
-  std::vector<std::string> items;
-  std::stringstream stream(text);
-  for (std::string item; std::getline(stream, item, ',');) {
-    if (!item.empty()) items.push_back(item);
-  }
-  return items;
-}
-
-// Files named on the command line, directories expanded to their mesh files in name order.
-std::vector<fs::path> mesh_files(const std::vector<std::string>& arguments) {
-  std::vector<fs::path> files;
-  for (const std::string& argument : arguments) {
-    if (!fs::is_directory(argument)) {
-      files.emplace_back(argument);
-      continue;
-    }
-    std::vector<fs::path> found;
-    for (const fs::directory_entry& entry : fs::directory_iterator(argument)) {
-      const std::string extension = entry.path().extension().string();
-      if (extension == ".ply" || extension == ".obj" || extension == ".off" ||
-          extension == ".stl") {
-        found.push_back(entry.path());
-      }
-    }
-    std::sort(found.begin(), found.end());
-    files.insert(files.end(), found.begin(), found.end());
-  }
-  return files;
-}
-
 double median(std::vector<double> values) {
   if (values.empty()) return 0;
   std::sort(values.begin(), values.end());
@@ -79,10 +48,11 @@ struct MethodSummary {
 };
 
 int run_bench(const BenchCommand& command) {
-  std::vector<std::string> inpainters = split(command.inpainters);
+  std::vector<std::string> inpainters = split_list(command.inpainters);
   if (inpainters.empty()) inpainters = inpainter_names();
   std::vector<TrendKind> trends;
-  for (const std::string& name : split(command.trends)) trends.push_back(trend_from_name(name));
+  for (const std::string& name : split_list(command.trends))
+    trends.push_back(trend_from_name(name));
   for (const std::string& name : inpainters) {
     const std::vector<std::string> known = inpainter_names();
     if (std::find(known.begin(), known.end(), name) == known.end()) {

@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
@@ -28,11 +30,57 @@ void set_fallbacks(const std::string& list, RepairOptions& options) {
   }
 }
 
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream stream(text);
+  for (std::string item; std::getline(stream, item, ',');) {
+    if (!item.empty()) items.push_back(item);
+  }
+  return items;
+}
+
+// Files named on the command line, directories expanded to their mesh files in name order.
+std::vector<std::filesystem::path> mesh_files(const std::vector<std::string>& arguments) {
+  std::vector<std::filesystem::path> files;
+  for (const std::string& argument : arguments) {
+    if (!std::filesystem::is_directory(argument)) {
+      files.emplace_back(argument);
+      continue;
+    }
+    std::vector<std::filesystem::path> found;
+    for (const std::filesystem::directory_entry& entry :
+         std::filesystem::directory_iterator(argument)) {
+      const std::string extension = entry.path().extension().string();
+      if (extension == ".ply" || extension == ".obj" || extension == ".off" ||
+          extension == ".stl") {
+        found.push_back(entry.path());
+      }
+    }
+    std::sort(found.begin(), found.end());
+    files.insert(files.end(), found.begin(), found.end());
+  }
+  return files;
+}
+
 bool stdout_is_terminal() {
   return ::isatty(STDOUT_FILENO) == 1;
 }
 bool stderr_is_terminal() {
   return ::isatty(STDERR_FILENO) == 1;
+}
+
+namespace {
+std::string invocation;  // the command line, for reports that say how they were made
+}  // namespace
+
+void set_command_line(int argc, char** argv) {
+  invocation.clear();
+  for (int i = 0; i < argc; ++i)
+    invocation += (i ? " " : "") + std::string(i ? argv[i] : "rangefill");
+}
+
+const std::string& command_line() {
+  return invocation;
 }
 
 std::string join(const std::vector<std::string>& items) {

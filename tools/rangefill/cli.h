@@ -1,6 +1,7 @@
 // Shared plumbing of the rangefill sub-commands: exit codes, messages, loading, JSON output.
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -24,6 +25,16 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// "a,b,,c" → {"a", "b", "c"}.
+std::vector<std::string> split_list(const std::string& text);
+
+/// Files named on the command line, directories expanded to their mesh files in name order.
+std::vector<std::filesystem::path> mesh_files(const std::vector<std::string>& arguments);
+
+/// The command line as typed (set once by main), for reports that say how they were made.
+void set_command_line(int argc, char** argv);
+const std::string& command_line();
+
 /// "a, b, c" for messages and help texts.
 std::string join(const std::vector<std::string>& items);
 
@@ -35,6 +46,9 @@ void add_info_command(CLI::App& app, Runner& runner);
 void add_holes_command(CLI::App& app, Runner& runner);
 void add_repair_command(CLI::App& app, Runner& runner);
 void add_bench_command(CLI::App& app, Runner& runner);
+void add_depth_command(CLI::App& app, Runner& runner);
+void add_depth_bench_command(CLI::App& app, Runner& runner);
+void add_train_foe_command(CLI::App& app, Runner& runner);
 
 /// Sets RepairOptions' fallbacks from "front,least-area", "front", "least-area" or "none"; throws
 /// UsageError otherwise.

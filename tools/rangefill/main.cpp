@@ -15,7 +15,11 @@ int main(int argc, char** argv) {
   cli::add_holes_command(app, runner);
   cli::add_repair_command(app, runner);
   cli::add_bench_command(app, runner);
+  cli::add_depth_command(app, runner);
+  cli::add_depth_bench_command(app, runner);
+  cli::add_train_foe_command(app, runner);
 
+  cli::set_command_line(argc, argv);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

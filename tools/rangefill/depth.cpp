@@ -1,0 +1,242 @@
+// rangefill depth IN -o OUT, or --batch DIR --out-dir DIR: fill the holes of depth images.
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <mutex>
+
+#include "cli.h"
+#include "rangefill/depth.h"
+#include "rangefill/errors.h"
+#include "rangefill/parallel.h"
+
+namespace rangefill::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct DepthCommand {
+  std::string input, output, mask, batch, out_dir, shard = "0/1", trend = "none";
+  int threads = 1;
+  bool json = false;
+  DepthFillOptions options;
+};
+
+nlohmann::json stats_json(const DepthFillStats& stats) {
+  return {{"holes", stats.holes},
+          {"filled", stats.filled},
+          {"filled_pixels", stats.filled_pixels},
+          {"at_edge", stats.at_edge},
+          {"too_large", stats.too_large},
+          {"at_border", stats.at_border},
+          {"without_support", stats.without_support}};
+}
+
+std::string stats_text(const DepthFillStats& stats) {
+  return std::to_string(stats.holes) + " holes, " + std::to_string(stats.filled) + " filled (" +
+         std::to_string(stats.filled_pixels) + " pixels, " + std::to_string(stats.at_edge) +
+         " beside a depth edge); left: " + std::to_string(stats.too_large) + " too large, " +
+         std::to_string(stats.at_border) + " on the border, " +
+         std::to_string(stats.without_support) + " without valid neighbours";
+}
+
+// Reads, fills and writes one image (`mask` empty: fill the invalid pixels).
+DepthFillStats fill_file(const fs::path& input, const fs::path& mask, const fs::path& output,
+                         const DepthFillOptions& options) {
+  const cv::Mat depth = read_depth_image(input);
+  check_depth_format(output, depth.type());
+  cv::Mat filled;
+  DepthFillStats stats;
+  try {
+    stats = fill_depth(depth, mask.empty() ? cv::Mat() : read_mask_image(mask), filled, options);
+  } catch (const InvalidInput& error) {
+    throw InvalidInput(input.string() + (mask.empty() ? "" : " with mask " + mask.string()) + ": " +
+                       error.what());
+  }
+  write_depth_image(filled, output);
+  return stats;
+}
+
+bool same_file(const fs::path& a, const fs::path& b) {
+  std::error_code error;
+  return fs::equivalent(a, b, error);
+}
+
+int run_single(const DepthCommand& command) {
+  if (command.output.empty()) throw UsageError("-o OUT is required with an input file");
+  if (!is_depth_image_path(command.output)) {
+    throw UsageError(command.output + ": unknown format (expected .png, .tif, .tiff or .exr)");
+  }
+  if (same_file(command.output, command.input) ||
+      (!command.mask.empty() && same_file(command.output, command.mask))) {
+    throw UsageError(command.output + ": is an input; choose another output");
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const DepthFillStats stats =
+      fill_file(command.input, command.mask, command.output, command.options);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (command.json) {
+    nlohmann::json report = stats_json(stats);
+    report["input"] = command.input;
+    report["output"] = command.output;
+    report["seconds"] = seconds;
+    print_json(report);
+  } else {
+    std::printf("%s: %s; %.3f s; wrote %s\n", command.input.c_str(), stats_text(stats).c_str(),
+                seconds, command.output.c_str());
+  }
+  return kOk;
+}
+
+// "K/N" with 0 <= K < N.
+std::pair<int, int> parse_shard(const std::string& text) {
+  const size_t slash = text.find('/');
+  try {
+    size_t used_k = 0, used_n = 0;
+    const int k = std::stoi(text.substr(0, slash), &used_k);
+    const int n = std::stoi(text.substr(slash + 1), &used_n);
+    if (slash != std::string::npos && used_k == slash && used_n == text.size() - slash - 1 &&
+        n >= 1 && k >= 0 && k < n) {
+      return {k, n};
+    }
+  } catch (const std::exception&) {
+  }
+  throw UsageError("--shard: '" + text + "' is not K/N with 0 <= K < N");
+}
+
+struct FileOutcome {
+  bool written = false;
+  std::string error;
+  DepthFillStats stats;
+};
+
+int run_batch(const DepthCommand& command) {
+  if (!command.input.empty() || !command.output.empty() || !command.mask.empty()) {
+    throw UsageError("--batch takes no input file, -o or --mask (outputs go to --out-dir)");
+  }
+  if (command.out_dir.empty()) throw UsageError("--batch needs --out-dir");
+  const auto [shard, shards] = parse_shard(command.shard);
+  if (!fs::is_directory(command.batch)) throw IoError(command.batch + ": not a directory");
+  fs::create_directories(command.out_dir);
+  if (same_file(command.out_dir, command.batch)) {
+    throw UsageError("--out-dir " + command.out_dir +
+                     " is the input directory: the outputs would overwrite the inputs");
+  }
+
+  // Every depth image of the directory in name order; this shard takes every shards-th from shard.
+  std::vector<fs::path> all, files;
+  for (const fs::directory_entry& entry : fs::directory_iterator(command.batch)) {
+    if (entry.is_regular_file() && is_depth_image_path(entry.path())) all.push_back(entry.path());
+  }
+  std::sort(all.begin(), all.end());
+  for (size_t i = shard; i < all.size(); i += shards) files.push_back(all[i]);
+
+  std::vector<FileOutcome> outcomes(files.size());
+  std::mutex progress_mutex;
+  int done = 0;
+  const bool progress = stderr_is_terminal();
+  const auto start = std::chrono::steady_clock::now();
+  parallel_for(static_cast<int>(files.size()), command.threads, [&](int i) {
+    const fs::path output = fs::path(command.out_dir) / files[i].filename();
+    FileOutcome& outcome = outcomes[i];
+    try {
+      if (same_file(output, files[i])) throw IoError(output.string() + ": is the input");
+      outcome.stats = fill_file(files[i], {}, output, command.options);
+      outcome.written = true;
+    } catch (const std::exception& error) {
+      outcome.error = error.what();
+    }
+    if (!progress) return;
+    const std::lock_guard<std::mutex> lock(progress_mutex);
+    std::fprintf(stderr, "\r\033[K[%d/%zu] %s", ++done, files.size(), files[i].filename().c_str());
+    std::fflush(stderr);
+  });
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (progress) std::fprintf(stderr, "\r\033[K");
+
+  int skipped = 0;
+  nlohmann::json report = nlohmann::json::array();
+  for (size_t i = 0; i < files.size(); ++i) {
+    const FileOutcome& outcome = outcomes[i];
+    skipped += !outcome.written;
+    if (!outcome.written) std::cerr << "rangefill: skipped " << outcome.error << "\n";
+    if (!command.json) continue;
+    nlohmann::json entry = outcome.written ? stats_json(outcome.stats) : nlohmann::json::object();
+    entry["input"] = files[i].string();
+    entry["written"] = outcome.written;
+    if (!outcome.written) entry["error"] = outcome.error;
+    report.push_back(entry);
+  }
+  if (command.json) {
+    print_json(report);
+  } else {
+    std::printf("%zu files (shard %d/%d of %zu), %zu written to %s, %d skipped; %.1f s\n",
+                files.size(), shard, shards, all.size(), files.size() - skipped,
+                command.out_dir.c_str(), skipped, seconds);
+  }
+  return skipped > 0 ? kPartial : kOk;
+}
+
+int run_depth(DepthCommand& command) {
+  // OpenCV builds with the bundled OpenEXR read and write EXR only when this is set before the
+  // first EXR file (opencv#21326); Debian's, built against the system OpenEXR, do by default. A
+  // value the user set is kept.
+  ::setenv("OPENCV_IO_ENABLE_OPENEXR", "1", 0);
+  command.options.trend = trend_from_name(command.trend);
+  if (command.batch.empty() == command.input.empty()) {
+    throw UsageError("give an input file (with -o OUT) or --batch DIR (with --out-dir DIR)");
+  }
+  return command.batch.empty() ? run_single(command) : run_batch(command);
+}
+
+}  // namespace
+
+void add_depth_command(CLI::App& app, Runner& runner) {
+  auto command = std::make_shared<DepthCommand>();
+  DepthFillOptions& options = command->options;
+  CLI::App* sub = app.add_subcommand(
+      "depth", "Fill the holes of depth images (16-bit PNG/TIFF in mm, float TIFF/EXR in m)");
+  sub->add_option("input", command->input, "Depth image; 0 (or NaN) marks invalid pixels");
+  sub->add_option("-o,--output", command->output, "Filled depth image (format from the extension)");
+  sub->add_option("--mask", command->mask,
+                  "Pixels to fill: non-zero in this one-channel image (default: the invalid ones)");
+  sub->add_option("--batch", command->batch, "Fill every depth image of this directory");
+  sub->add_option("--out-dir", command->out_dir, "Where --batch writes (same file names)");
+  sub->add_option("--threads", command->threads,
+                  "Files filled in parallel with --batch (the outputs do not depend on it)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
+  sub->add_option(
+         "--shard", command->shard,
+         "K/N: fill only files K, K+N, K+2N, ... of the directory in name order (0-based), "
+         "for job arrays")
+      ->capture_default_str();
+  sub->add_option("--inpainter", options.inpainter, "Back-end: " + join(inpainter_names()))
+      ->capture_default_str()
+      ->check(CLI::IsMember(inpainter_names()));
+  sub->add_option("--max-hole", options.max_hole_pixels,
+                  "Leave holes of more pixels as they are (0: no limit)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  sub->add_flag("--fill-border", options.fill_border, "Also fill holes touching the image border");
+  sub->add_option("--discontinuity", options.discontinuity,
+                  "Relative depth jump that separates two surfaces around a hole")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--trend", command->trend,
+                  "Surface fitted around each hole and removed before the back-end")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"none", "plane", "quadric"}));
+  sub->add_option("--radius", options.inpainting.radius,
+                  "Neighbourhood radius in pixels (telea, ns)")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 100.0));
+  sub->add_flag("--json", command->json, "Print what was done as JSON");
+  sub->callback([command, &runner] { runner = [command] { return run_depth(*command); }; });
+}
+
+}  // namespace rangefill::cli

@@ -1,0 +1,307 @@
+// rangefill depth-bench: sensor-like holes punched into depth frames (rendered from meshes, or
+// recorded by sensors), filled by fill_depth with each back-end and by plain cv::inpaint, measured.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+
+#include <opencv2/photo.hpp>
+
+#include "cli.h"
+#include "rangefill/depth.h"
+#include "rangefill/punch.h"
+
+namespace rangefill::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct DepthBenchCommand {
+  std::vector<std::string> meshes, frames;
+  std::string inpainters, csv, save, trend = "none";
+  int views = 2, patterns = 3;
+  SensorHoleOptions holes;
+  DepthFillOptions fill;
+};
+
+// The scene a mesh is rendered in: the mesh scaled to a 1 m bounding-box diagonal and centred on
+// the origin, standing on a floor (y = its lowest point), with a wall 0.9 m behind it as seen from
+// the camera, which is 1.6 m away at `azimuth` and 20° above the horizon, looking at the origin.
+struct Scene {
+  Mesh mesh;
+  Eigen::Isometry3d pose;
+};
+
+Scene make_scene(const Mesh& object, double azimuth) {
+  const auto [lowest, highest] = bounding_box(object);
+  const Vec3 centre = (lowest + highest) / 2;
+  const double scale = 1 / (highest - lowest).norm();
+  Scene scene;
+  for (const Vec3& p : object.positions) scene.mesh.positions.push_back((p - centre) * scale);
+  scene.mesh.triangles = object.triangles;
+  const double elevation = 20 * M_PI / 180, distance = 1.6, far = 20;
+  const Vec3 towards_camera(std::sin(azimuth), 0, std::cos(azimuth));
+  const Vec3 side(towards_camera.z(), 0, -towards_camera.x());
+  const double floor = (lowest.y() - centre.y()) * scale;
+  const Vec3 wall = -0.9 * towards_camera;
+  const auto add_quad = [&](const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+    const int first = scene.mesh.vertex_count();
+    for (const Vec3& p : {a, b, c, d}) scene.mesh.positions.push_back(p);
+    scene.mesh.triangles.push_back({first, first + 1, first + 2});
+    scene.mesh.triangles.push_back({first, first + 2, first + 3});
+  };
+  const Vec3 up(0, 1, 0);
+  add_quad(wall - far * side + floor * up, wall + far * side + floor * up,
+           wall + far * side + far * up, wall - far * side + far * up);
+  add_quad(wall - far * side + floor * up, wall + far * side + floor * up,
+           wall + far * side + floor * up + far * towards_camera,
+           wall - far * side + floor * up + far * towards_camera);
+  scene.mesh = make_mesh(scene.mesh.positions, scene.mesh.triangles);
+  const Vec3 eye = distance * (std::cos(elevation) * towards_camera + std::sin(elevation) * up);
+  scene.pose = look_at(eye, Vec3::Zero(), up);
+  return scene;
+}
+
+struct Frame {
+  std::string dataset, name;
+  cv::Mat truth;  // CV_16UC1, millimetres
+};
+
+// Errors and times of one method over a dataset.
+struct Tally {
+  double squared = 0, absolute = 0, pixels = 0;
+  long long unfilled = 0;
+  std::vector<double> milliseconds;
+};
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0;
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
+}
+
+template <typename Run>
+double milliseconds_of(Run run) {
+  const auto start = std::chrono::steady_clock::now();
+  run();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+// Files named on the command line, directories expanded to their depth images in name order.
+std::vector<fs::path> depth_files(const std::vector<std::string>& arguments) {
+  std::vector<fs::path> files;
+  for (const std::string& argument : arguments) {
+    if (!fs::is_directory(argument)) {
+      files.emplace_back(argument);
+      continue;
+    }
+    std::vector<fs::path> found;
+    for (const fs::directory_entry& entry : fs::directory_iterator(argument)) {
+      if (is_depth_image_path(entry.path())) found.push_back(entry.path());
+    }
+    std::sort(found.begin(), found.end());
+    files.insert(files.end(), found.begin(), found.end());
+  }
+  return files;
+}
+
+int run_depth_bench(const DepthBenchCommand& command) {
+  std::vector<std::string> backends = split_list(command.inpainters);
+  if (backends.empty()) backends = inpainter_names();
+  const std::vector<std::string> known = inpainter_names();
+  for (const std::string& name : backends) {
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      throw UsageError("--inpainters: unknown back-end '" + name + "' (known: " + join(known) +
+                       ")");
+    }
+  }
+  DepthFillOptions fill = command.fill;
+  fill.trend = trend_from_name(command.trend);
+  fill.fill_border = true;  // every punched pixel is scored
+  if (command.meshes.empty() && command.frames.empty()) {
+    throw UsageError("give --meshes, --frames or both");
+  }
+
+  std::vector<Frame> frames;
+  const CameraIntrinsics camera;
+  for (const fs::path& file : mesh_files(command.meshes)) {
+    const Mesh mesh = load_mesh(file.string());
+    for (int view = 0; view < command.views; ++view) {
+      const Scene scene = make_scene(mesh, 2 * M_PI * (view + 0.25) / command.views);
+      cv::Mat millimetres;
+      render_depth(scene.mesh, camera, scene.pose, {640, 480}).convertTo(millimetres, CV_16U, 1000);
+      frames.push_back(
+          {"rendered", file.stem().string() + "-" + std::to_string(view), millimetres});
+    }
+  }
+  for (const fs::path& file : depth_files(command.frames)) {
+    cv::Mat depth = read_depth_image(file);
+    if (depth.type() == CV_32FC1) depth.convertTo(depth, CV_16U, 1000);  // NaN → 0
+    frames.push_back({"sensor", file.stem().string(), depth});
+  }
+
+  // Methods: fill_depth with each back-end, then cv::inpaint on the 16-bit frame, radius as ours.
+  struct Baseline {
+    std::string name;
+    int flags;
+    bool mask_all_invalid;
+  };
+  const std::vector<Baseline> baselines = {
+      {"cv::inpaint ns, punched mask", cv::INPAINT_NS, false},
+      {"cv::inpaint ns, all invalid masked", cv::INPAINT_NS, true},
+      {"cv::inpaint telea, punched mask", cv::INPAINT_TELEA, false},
+      {"cv::inpaint telea, all invalid masked", cv::INPAINT_TELEA, true},
+  };
+  std::vector<std::string> methods;
+  for (const std::string& name : backends) methods.push_back("fill_depth " + name);
+  for (const Baseline& baseline : baselines) methods.push_back(baseline.name);
+
+  std::map<std::string, std::map<std::string, Tally>> tallies;  // dataset → method → tally
+  std::map<std::string, int> frame_counts;
+  std::map<std::string, long long> punched_pixels;
+  std::ofstream csv;
+  if (!command.csv.empty()) {
+    csv.open(command.csv);
+    csv << "dataset,frame,pattern,method,punched,unfilled,rmse_mm,mae_mm,ms\n";
+  }
+  if (!command.save.empty()) fs::create_directories(command.save);
+  const bool progress = stderr_is_terminal();
+  for (const Frame& frame : frames) {
+    for (int pattern = 0; pattern < command.patterns; ++pattern) {
+      if (progress) {
+        std::fprintf(stderr, "\r\033[K%s %s #%d", frame.dataset.c_str(), frame.name.c_str(),
+                     pattern);
+      }
+      SensorHoleOptions holes = command.holes;
+      holes.seed = seed_for_mesh(command.holes.seed, frame.name) + pattern;
+      const cv::Mat punched = punch_depth_holes(frame.truth, holes);
+      cv::Mat input = frame.truth.clone();
+      input.setTo(0, punched);
+      const cv::Mat all_invalid = input == 0;
+      const double pixels = std::max(1, cv::countNonZero(punched));
+      ++frame_counts[frame.dataset];
+      punched_pixels[frame.dataset] += cv::countNonZero(punched);
+      const std::string stem =
+          command.save + "/" + frame.dataset + "-" + frame.name + "-" + std::to_string(pattern);
+      if (!command.save.empty()) {
+        write_depth_image(frame.truth, stem + "-truth.png");
+        write_depth_image(input, stem + "-input.png");
+      }
+
+      for (size_t m = 0; m < methods.size(); ++m) {
+        cv::Mat output;
+        double ms = 0;
+        if (m < backends.size()) {
+          DepthFillOptions options = fill;
+          options.inpainter = backends[m];
+          ms = milliseconds_of([&] { fill_depth(input, punched, output, options); });
+        } else {
+          const Baseline& baseline = baselines[m - backends.size()];
+          const cv::Mat& mask = baseline.mask_all_invalid ? all_invalid : punched;
+          ms = milliseconds_of([&] {
+            cv::inpaint(input, mask, output, command.fill.inpainting.radius, baseline.flags);
+          });
+        }
+        Tally& tally = tallies[frame.dataset][methods[m]];
+        tally.milliseconds.push_back(ms);
+        double squared = 0, absolute = 0;
+        long long unfilled = 0;
+        for (int row = 0; row < input.rows; ++row) {
+          for (int col = 0; col < input.cols; ++col) {
+            if (!punched.at<std::uint8_t>(row, col)) continue;
+            // A pixel left at 0 counts as a fill at 0 mm: cv::inpaint's fills drag it there.
+            const int value = output.at<std::uint16_t>(row, col);
+            unfilled += value == 0;
+            const double error = value - frame.truth.at<std::uint16_t>(row, col);
+            squared += error * error;
+            absolute += std::abs(error);
+          }
+        }
+        tally.squared += squared;
+        tally.absolute += absolute;
+        tally.pixels += pixels;
+        tally.unfilled += unfilled;
+        if (csv.is_open()) {
+          csv << frame.dataset << ',' << frame.name << ',' << pattern << ",\"" << methods[m]
+              << "\"," << pixels << ',' << unfilled << ',' << std::sqrt(squared / pixels) << ','
+              << absolute / pixels << ',' << ms << '\n';
+        }
+        if (!command.save.empty() && m < backends.size()) {
+          write_depth_image(output, stem + "-" + backends[m] + ".png");
+        }
+      }
+    }
+  }
+  if (progress) std::fprintf(stderr, "\r\033[K");
+
+  for (const auto& [dataset, by_method] : tallies) {
+    std::printf("%s frames: %d (holes: %.1f%% of the valid pixels, %lld punched pixels)\n",
+                dataset.c_str(), frame_counts[dataset], 100 * command.holes.fraction,
+                punched_pixels[dataset]);
+    std::printf("  %-40s %9s %9s %10s %9s\n", "method", "RMSE mm", "MAE mm", "ms/frame",
+                "left at 0");
+    std::string best_backend, fastest_backend, best_baseline;
+    double best_rmse = INFINITY, fastest_ms = INFINITY, baseline_rmse = INFINITY;
+    for (size_t m = 0; m < methods.size(); ++m) {
+      const Tally& tally = by_method.at(methods[m]);
+      const double rmse = std::sqrt(tally.squared / tally.pixels);
+      const double ms = median(tally.milliseconds);
+      std::printf("  %-40s %9.1f %9.1f %10.1f %9lld\n", methods[m].c_str(), rmse,
+                  tally.absolute / tally.pixels, ms, tally.unfilled);
+      if (m < backends.size()) {
+        if (rmse < best_rmse) best_rmse = rmse, best_backend = methods[m];
+        if (ms < fastest_ms) fastest_ms = ms, fastest_backend = methods[m];
+      } else if (rmse < baseline_rmse) {
+        baseline_rmse = rmse, best_baseline = methods[m];
+      }
+    }
+    std::printf(
+        "  best: %s, RMSE %.0f%% below the best cv::inpaint (%s); fastest: %s, %.1f ms/frame\n",
+        best_backend.c_str(), 100 * (1 - best_rmse / baseline_rmse), best_baseline.c_str(),
+        fastest_backend.c_str(), fastest_ms);
+  }
+  return kOk;
+}
+
+}  // namespace
+
+void add_depth_bench_command(CLI::App& app, Runner& runner) {
+  auto command = std::make_shared<DepthBenchCommand>();
+  CLI::App* sub = app.add_subcommand(
+      "depth-bench",
+      "Punch sensor-like holes into depth frames, fill them with each back-end and with "
+      "cv::inpaint, and measure");
+  sub->add_option("--meshes", command->meshes,
+                  "Meshes (or directories of them) rendered as 640x480 depth frames");
+  sub->add_option("--frames", command->frames,
+                  "Depth frames (16-bit PNG/TIFF in mm, float TIFF/EXR in m), or directories of "
+                  "them");
+  sub->add_option("--views", command->views, "Frames rendered per mesh")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 360));
+  sub->add_option("--patterns", command->patterns, "Hole patterns punched per frame")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
+  sub->add_option("--fraction", command->holes.fraction, "Share of the valid pixels punched")
+      ->capture_default_str()
+      ->check(CLI::Range(0.001, 0.5));
+  sub->add_option("--seed", command->holes.seed, "Seed of the holes")->capture_default_str();
+  sub->add_option("--inpainters", command->inpainters, "Comma-separated back-ends (default: all)");
+  sub->add_option("--discontinuity", command->fill.discontinuity,
+                  "Relative depth jump between two surfaces (fill_depth)")
+      ->capture_default_str();
+  sub->add_option("--trend", command->trend, "Trend of fill_depth: none, plane, quadric")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"none", "plane", "quadric"}));
+  sub->add_option("--csv", command->csv, "Write one row per frame, pattern and method here");
+  sub->add_option("--save", command->save, "Write every frame, its holes and each fill here");
+  sub->callback([command, &runner] { runner = [command] { return run_depth_bench(*command); }; });
+}
+
+}  // namespace rangefill::cli

@@ -1,0 +1,120 @@
+// rangefill train-foe: fit a Fields-of-Experts model to depth patches cut from meshes.
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "cli.h"
+#include "rangefill/foe_training.h"
+#include "rangefill/patches.h"
+#include "rangefill/punch.h"
+
+namespace rangefill::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct TrainCommand {
+  std::vector<std::string> meshes;
+  std::string validation = "bunny.ply,fandisk.ply,spot.ply", output, name = "depth";
+  PatchOptions patches;
+  FoeTrainingOptions training;
+  double min_hole = 0.05, max_hole = 0.30;
+};
+
+// Patches of every mesh, each with one blob mask; split by mesh name into training and validation.
+void cut_samples(const TrainCommand& command, std::vector<HoleSample>& training,
+                 std::vector<HoleSample>& validation, std::string& data) {
+  const std::vector<std::string> held_out = split_list(command.validation);
+  const int margin = command.training.size / 2 + 2;
+  int training_meshes = 0;
+  for (const fs::path& file : mesh_files(command.meshes)) {
+    const std::string name = file.filename().string();
+    const bool validating = std::count(held_out.begin(), held_out.end(), name) > 0;
+    PatchOptions options = command.patches;
+    options.seed = seed_for_mesh(command.patches.seed, name);
+    const std::vector<cv::Mat> patches = depth_patches(load_mesh(file.string()), options);
+    for (size_t p = 0; p < patches.size(); ++p) {
+      const cv::Mat mask = blob_mask(patches[p].size(), command.min_hole, command.max_hole, margin,
+                                     options.seed + p);
+      (validating ? validation : training).push_back(make_hole_sample(patches[p], mask));
+    }
+    training_meshes += !validating;
+    std::printf("%-20s %3zu patches (%s)\n", name.c_str(), patches.size(),
+                validating ? "validation" : "training");
+    std::fflush(stdout);
+  }
+  std::ostringstream text;
+  text << training.size() << " training patches from " << training_meshes << " meshes, "
+       << validation.size() << " validation patches from " << command.validation << "; "
+       << command.patches.size << "x" << command.patches.size
+       << " pixels at q = " << command.patches.beta << " d_m, blob masks " << command.min_hole * 100
+       << "-" << command.max_hole * 100 << "% of the pixels, seed " << command.patches.seed;
+  data = text.str();
+}
+
+int run_train(const TrainCommand& command) {
+  std::vector<HoleSample> training, validation;
+  std::string data;
+  cut_samples(command, training, validation, data);
+  if (training.empty() || validation.empty()) {
+    throw UsageError("train-foe: need training and validation patches (see --validation)");
+  }
+  FoeTrainingOptions options = command.training;
+  options.progress = [](int iteration, double loss, double seconds) {
+    std::printf("iteration %4d  loss %.6e  %7.1f s\n", iteration, loss, seconds);
+    std::fflush(stdout);
+  };
+  const FoeTraining result = train_foe(training, validation, options);
+  FoeModel model = result.model;
+  model.name = command.name;
+  model.normalisation =
+      "the residual a back-end receives in rangefill's pipeline: zone depth normalised to [0, 1] "
+      "(eq. 7-8) minus the quadric fitted to the known pixels within 3 px of the hole";
+  std::ostringstream training_text;
+  training_text << "loss-specific: mean squared error at the masked pixels after " << options.steps
+                << " gradient steps (step " << result.step
+                << ") from the harmonic fill, L-BFGS over the filters (DCT basis without DC) and "
+                   "log alphas; "
+                << data << "; loss " << result.training_loss_start << " -> "
+                << result.training_loss_end << " (validation " << result.validation_loss_start
+                << " -> " << result.validation_loss_end << "), " << result.iterations
+                << " iterations, " << static_cast<int>(result.seconds)
+                << " s; command: " << command_line();
+  model.training = training_text.str();
+  std::ofstream(command.output) << serialize_foe_model(model);
+  std::printf("%s\nvalidation loss %.6e -> %.6e; wrote %s\n", result.stop.c_str(),
+              result.validation_loss_start, result.validation_loss_end, command.output.c_str());
+  return kOk;
+}
+
+}  // namespace
+
+void add_train_foe_command(CLI::App& app, Runner& runner) {
+  auto command = std::make_shared<TrainCommand>();
+  CLI::App* sub = app.add_subcommand(
+      "train-foe", "Fit a Fields-of-Experts model to depth patches cut from meshes");
+  sub->add_option("--meshes", command->meshes, "Meshes, or directories of them")->required();
+  sub->add_option("--validation", command->validation,
+                  "File names of the meshes held out for validation")
+      ->capture_default_str();
+  sub->add_option("-o,--output", command->output, "The model file to write (YAML)")->required();
+  sub->add_option("--name", command->name, "The model's name")->capture_default_str();
+  sub->add_option("--size", command->training.size, "Filter size (odd)")->capture_default_str();
+  sub->add_option("--count", command->training.count, "Number of filters")->capture_default_str();
+  sub->add_option("--steps", command->training.steps, "Inference steps unrolled")
+      ->capture_default_str();
+  sub->add_option("--iterations", command->training.iterations, "L-BFGS iterations")
+      ->capture_default_str();
+  sub->add_option("--patches", command->patches.count, "Patches per mesh")->capture_default_str();
+  sub->add_option("--patch-size", command->patches.size, "Patch size in pixels")
+      ->capture_default_str();
+  sub->add_option("--seed", command->patches.seed, "Seed of patches and masks")
+      ->capture_default_str();
+  sub->add_option("--threads", command->training.threads, "Threads")->capture_default_str();
+  sub->callback([command, &runner] { runner = [command] { return run_train(*command); }; });
+}
+
+}  // namespace rangefill::cli
