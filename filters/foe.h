@@ -6,25 +6,19 @@
 
 namespace rangefill {
 
-struct FoeInferenceOptions {
-  int max_iterations = 200;          // L-BFGS iterations
-  double function_tolerance = 1e-7;  // stop when |ΔE| / E falls below this
-};
-
-/// MAP inpainting: minimises E over the masked pixels with L-BFGS (Ceres' GradientProblemSolver),
-/// starting from the harmonic fill, on the mask's bounding box grown by the filter footprint (the
-/// only cliques that change), inputs divided by foe_input_divisor. Known pixels are returned
-/// exactly.
+/// MAP inpainting (foe_map) from the harmonic fill, on the mask's bounding box grown by the filter
+/// footprint (the only cliques that change), inputs divided by foe_input_divisor. Known pixels are
+/// returned exactly.
 class FoeInpainter : public Inpainter {
  public:
-  explicit FoeInpainter(FoeModel model, const FoeInferenceOptions& options = {});
+  explicit FoeInpainter(FoeModel model, const FoeMapOptions& options = {});
   std::string name() const override { return "foe"; }
   void inpaint(cv::InputArray depth, cv::InputArray mask, cv::OutputArray out) const override;
   const FoeModel& model() const { return model_; }
 
  private:
   FoeModel model_;
-  FoeInferenceOptions options_;
+  FoeMapOptions options_;
 };
 
 }  // namespace rangefill

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include <ceres/ceres.h>
 #include <opencv2/imgproc.hpp>
 
 #include "rangefill/errors.h"
@@ -291,6 +292,61 @@ double foe_energy_of_unknowns(const FoeModel& model, const cv::Mat& x, const cv:
   check_energy_argument(x);
   CV_Assert(mask.type() == CV_8UC1 && mask.size() == x.size());
   return energy_over(model, x, cliques_touching(mask, model.size / 2), gradient);
+}
+
+namespace {
+
+// E as a function of the unknown pixels (the rest fixed), for Ceres.
+class EnergyOfUnknowns : public ceres::FirstOrderFunction {
+ public:
+  EnergyOfUnknowns(const FoeModel& model, cv::Mat image, const cv::Mat& mask,
+                   std::vector<cv::Point> unknowns)
+      : model_(model), image_(std::move(image)), mask_(mask), unknowns_(std::move(unknowns)) {}
+
+  bool Evaluate(const double* parameters, double* cost, double* gradient) const override {
+    for (size_t k = 0; k < unknowns_.size(); ++k) image_.at<double>(unknowns_[k]) = parameters[k];
+    cv::Mat full_gradient;
+    *cost = foe_energy_of_unknowns(model_, image_, mask_, gradient ? &full_gradient : nullptr);
+    if (gradient) {
+      for (size_t k = 0; k < unknowns_.size(); ++k) {
+        gradient[k] = full_gradient.at<double>(unknowns_[k]);
+      }
+    }
+    return std::isfinite(*cost);
+  }
+  int NumParameters() const override { return static_cast<int>(unknowns_.size()); }
+
+ private:
+  const FoeModel& model_;
+  mutable cv::Mat image_;  // Evaluate writes the unknowns into it
+  const cv::Mat& mask_;
+  std::vector<cv::Point> unknowns_;
+};
+
+}  // namespace
+
+cv::Mat foe_map(const FoeModel& model, const cv::Mat& start, const cv::Mat& mask,
+                const FoeMapOptions& options) {
+  check_energy_argument(start);
+  CV_Assert(mask.type() == CV_8UC1 && mask.size() == start.size());
+  std::vector<cv::Point> unknowns;
+  cv::findNonZero(mask, unknowns);  // row by row
+  cv::Mat result = start.clone();
+  if (unknowns.empty()) return result;
+  std::vector<double> parameters;
+  for (const cv::Point& p : unknowns) parameters.push_back(start.at<double>(p));
+
+  ceres::GradientProblemSolver::Options solver;
+  solver.line_search_direction_type = ceres::LBFGS;
+  solver.max_num_iterations = options.max_iterations;
+  solver.function_tolerance = options.function_tolerance;
+  solver.gradient_tolerance = options.gradient_tolerance;
+  solver.logging_type = ceres::SILENT;
+  ceres::GradientProblemSolver::Summary summary;
+  ceres::GradientProblem problem(new EnergyOfUnknowns(model, start.clone(), mask, unknowns));
+  ceres::Solve(solver, problem, parameters.data(), &summary);
+  for (size_t k = 0; k < unknowns.size(); ++k) result.at<double>(unknowns[k]) = parameters[k];
+  return result;
 }
 
 }  // namespace rangefill

@@ -6,6 +6,7 @@
 #include <thread>
 
 #include <ceres/ceres.h>
+#include <Eigen/Dense>
 #include <opencv2/imgproc.hpp>
 
 #include "../filters/harmonic.h"
@@ -57,71 +58,134 @@ double shifted_dot(const cv::Mat& a, const cv::Mat& b, const cv::Rect& valid, cv
   return dot(a(valid), b(valid + offset));
 }
 
-// The loss of one sample and, when `gradient` is given, its derivatives with respect to the taps
-// (count × size², row-major), α (count) and η (1), added to `gradient`.
-double sample_loss(const FoeModel& model, double step, const HoleSample& sample,
-                   const cv::Mat& start, int steps, std::vector<double>* gradient) {
-  const int size = model.size, r = size / 2, count = model.count();
-  const cv::Rect valid(r, r, start.cols - 2 * r, start.rows - 2 * r);
-  cv::Mat mask;
-  sample.mask.convertTo(mask, CV_64F, 1.0 / 255);
-  const double masked = std::max(1, cv::countNonZero(sample.mask));
+// The MAP estimate the objective scores: tight tolerances, as the implicit gradient assumes
+// ∇_u E = 0 there.
+constexpr FoeMapOptions kTrainingMap{1000, 1e-14, 1e-11};
 
-  std::vector<cv::Mat> states{start.clone()};
-  for (int t = 0; t < steps; ++t) {
-    cv::Mat g;
-    foe_energy(model, states.back(), &g);
-    states.push_back(states.back() - step * mask.mul(g));
-  }
-  const cv::Mat difference = mask.mul(states.back() - sample.truth);
-  const double loss = 0.5 * dot(difference, difference) / masked;
-  if (!gradient) return loss;
-
-  const int taps = size * size;
-  cv::Mat lambda = difference / masked;  // ∂loss/∂x_T
-  for (int t = steps - 1; t >= 0; --t) {
-    const cv::Mat& x = states[t];
-    const cv::Mat v = mask.mul(lambda);
-    cv::Mat g = cv::Mat::zeros(x.size(), CV_64F), hessian_v = cv::Mat::zeros(x.size(), CV_64F);
-    for (int i = 0; i < count; ++i) {
-      const cv::Mat& kernel = model.filters[i];
-      const double alpha = model.alphas[i];
-      const cv::Mat y = foe_response(x, kernel);
-      const cv::Mat u = foe_response(v, kernel);
-      cv::Mat phi(x.size(), CV_64F), dphi(x.size(), CV_64F);
-      for (int row = 0; row < x.rows; ++row) {
-        for (int col = 0; col < x.cols; ++col) {
-          const double yy = y.at<double>(row, col), half = 0.5 * yy * yy;
-          phi.at<double>(row, col) = yy / (1 + half);
-          dphi.at<double>(row, col) = (1 - half) / ((1 + half) * (1 + half));
+// H = ∂²E/∂u² over the unknowns u (numbered row by row in `index`, −1 elsewhere):
+// Σ_i α_i Σ_c ρ''(y_c) J_c J_cᵀ with ρ(y) = log(1 + y²/2), J_c the filter placed at clique c.
+Eigen::MatrixXd hessian_of_unknowns(const FoeModel& model, const cv::Mat& x, const cv::Mat& index,
+                                    int unknowns) {
+  Eigen::MatrixXd hessian = Eigen::MatrixXd::Zero(unknowns, unknowns);
+  const int size = model.size, r = size / 2;
+  std::vector<std::pair<int, double>> taps;  // (unknown, filter tap) under the clique
+  for (int i = 0; i < model.count(); ++i) {
+    const cv::Mat& kernel = model.filters[i];
+    const cv::Mat y = foe_response(x, kernel);
+    for (int row = r; row < x.rows - r; ++row) {
+      for (int col = r; col < x.cols - r; ++col) {
+        taps.clear();
+        for (int k = 0; k < size * size; ++k) {
+          const int unknown = index.at<int>(row + k / size - r, col + k % size - r);
+          if (unknown >= 0) taps.push_back({unknown, kernel.at<double>(k / size, k % size)});
+        }
+        if (taps.empty()) continue;
+        const double half = 0.5 * y.at<double>(row, col) * y.at<double>(row, col);
+        const double curvature = model.alphas[i] * (1 - half) / ((1 + half) * (1 + half));
+        for (const auto& [a, ja] : taps) {
+          for (const auto& [b, jb] : taps) hessian(a, b) += curvature * ja * jb;
         }
       }
-      const cv::Mat influence = alpha * phi;  // zero outside `valid`, as y is
-      const cv::Mat w = alpha * dphi.mul(u);
-      g += foe_adjoint(influence, kernel);
-      hessian_v += foe_adjoint(w, kernel);
-      (*gradient)[taps * count + i] += -step * dot(u, phi);  // ∂/∂α_i
-      for (int k = 0; k < taps; ++k) {
-        const cv::Point offset(k % size - r, k / size - r);
-        (*gradient)[taps * i + k] +=
-            -step * (shifted_dot(influence, v, valid, offset) + shifted_dot(w, x, valid, offset));
+    }
+  }
+  return hessian;
+}
+
+// ∇_u E at x, over the unknowns.
+Eigen::VectorXd gradient_of_unknowns(const FoeModel& model, const cv::Mat& x, const cv::Mat& mask,
+                                     const std::vector<cv::Point>& unknowns) {
+  cv::Mat full;
+  foe_energy_of_unknowns(model, x, mask, &full);
+  Eigen::VectorXd gradient(unknowns.size());
+  for (size_t k = 0; k < unknowns.size(); ++k) gradient[k] = full.at<double>(unknowns[k]);
+  return gradient;
+}
+
+// foe_map, then Newton steps while they shrink ∇_u E (L-BFGS leaves it near 1e-9; the implicit
+// gradient assumes 0). `hessian` receives the factorised Hessian at the result.
+cv::Mat polished_map(const FoeModel& model, const cv::Mat& start, const cv::Mat& mask,
+                     const std::vector<cv::Point>& unknowns, const cv::Mat& index,
+                     Eigen::LDLT<Eigen::MatrixXd>& hessian) {
+  const int n = static_cast<int>(unknowns.size());
+  cv::Mat x = foe_map(model, start, mask, kTrainingMap);
+  hessian.compute(hessian_of_unknowns(model, x, index, n));
+  Eigen::VectorXd gradient = gradient_of_unknowns(model, x, mask, unknowns);
+  for (int newton = 0; newton < 3 && n > 0; ++newton) {
+    const Eigen::VectorXd step = hessian.solve(gradient);
+    cv::Mat trial = x.clone();
+    for (int k = 0; k < n; ++k) trial.at<double>(unknowns[k]) -= step[k];
+    const Eigen::VectorXd trial_gradient = gradient_of_unknowns(model, trial, mask, unknowns);
+    if (!(trial_gradient.norm() < gradient.norm())) break;
+    x = trial;
+    gradient = trial_gradient;
+    hessian.compute(hessian_of_unknowns(model, x, index, n));
+  }
+  return x;
+}
+
+// The loss of one sample and, when `gradient` is given, its derivatives with respect to the taps
+// (count × size², row-major) and α (count), added to `gradient`. At the MAP x*, ∇_u E(x*, θ) = 0,
+// so dx*/dθ = −H⁻¹ ∂(∇_u E)/∂θ and dL/dθ = −λᵀ ∂(∇_u E)/∂θ with H λ = ∂L/∂u (Samuel & Tappen,
+// "Learning optimized MAP estimates in continuously-valued MRF models", 2009).
+double sample_loss(const FoeModel& model, const HoleSample& sample, const cv::Mat& start,
+                   std::vector<double>* gradient) {
+  const int size = model.size, r = size / 2, count = model.count();
+  const cv::Rect valid(r, r, start.cols - 2 * r, start.rows - 2 * r);
+  std::vector<cv::Point> unknowns;
+  cv::findNonZero(sample.mask, unknowns);
+  const int n = static_cast<int>(unknowns.size());
+  cv::Mat index(start.size(), CV_32S, cv::Scalar(-1));
+  for (int k = 0; k < n; ++k) index.at<int>(unknowns[k]) = k;
+  Eigen::LDLT<Eigen::MatrixXd> hessian;
+  const cv::Mat x = polished_map(model, start, sample.mask, unknowns, index, hessian);
+  const double masked = std::max(1, n);
+  double loss = 0;
+  Eigen::VectorXd loss_gradient(n);
+  for (int k = 0; k < n; ++k) {
+    const double difference = x.at<double>(unknowns[k]) - sample.truth.at<double>(unknowns[k]);
+    loss += 0.5 * difference * difference / masked;
+    loss_gradient[k] = difference / masked;
+  }
+  if (!gradient || n == 0) return loss;
+
+  const Eigen::VectorXd lambda = hessian.solve(loss_gradient);
+  cv::Mat v = cv::Mat::zeros(x.size(), CV_64F);
+  for (int k = 0; k < n; ++k) v.at<double>(unknowns[k]) = lambda[k];
+
+  // ∂(vᵀ ∇E)/∂θ: for α_i, Σ_c u_c ψ(y_c); for tap k of J_i, Σ_c α_i (ψ(y_c) v[c+k] +
+  // ψ'(y_c) u_c x[c+k]), with y = J_i ⋆ x, u = J_i ⋆ v, ψ = ρ'.
+  const int taps = size * size;
+  for (int i = 0; i < count; ++i) {
+    const cv::Mat& kernel = model.filters[i];
+    const double alpha = model.alphas[i];
+    const cv::Mat y = foe_response(x, kernel), u = foe_response(v, kernel);
+    cv::Mat psi(x.size(), CV_64F), curvature(x.size(), CV_64F);
+    for (int row = 0; row < x.rows; ++row) {
+      for (int col = 0; col < x.cols; ++col) {
+        const double yy = y.at<double>(row, col), half = 0.5 * yy * yy;
+        psi.at<double>(row, col) = yy / (1 + half);
+        curvature.at<double>(row, col) = (1 - half) / ((1 + half) * (1 + half));
       }
     }
-    (*gradient)[(taps + 1) * count] += -dot(v, g);  // ∂/∂η
-    lambda -= step * hessian_v;
+    const cv::Mat influence = alpha * psi;  // zero outside `valid`, as y is
+    const cv::Mat w = alpha * curvature.mul(u);
+    (*gradient)[taps * count + i] -= dot(u, psi);
+    for (int k = 0; k < taps; ++k) {
+      const cv::Point offset(k % size - r, k / size - r);
+      (*gradient)[taps * i + k] -=
+          shifted_dot(influence, v, valid, offset) + shifted_dot(w, x, valid, offset);
+    }
   }
   return loss;
 }
 
 }  // namespace
 
-FoeObjective::FoeObjective(std::vector<HoleSample> samples, int size, int count, int steps,
-                           int threads)
+FoeObjective::FoeObjective(std::vector<HoleSample> samples, int size, int count, int threads)
     : samples_(std::move(samples)),
       basis_(dct_basis(size)),
       size_(size),
       count_(count),
-      steps_(steps),
       threads_(std::max(1, threads)) {
   if (size < 3 || size % 2 == 0) throw InvalidInput("foe training: filter size must be odd, >= 3");
   if (count < 1 || count > size * size - 1) {
@@ -160,7 +224,7 @@ FoeObjective::FoeObjective(std::vector<HoleSample> samples, int size, int count,
 }
 
 int FoeObjective::parameter_count() const {
-  return count_ * static_cast<int>(basis_.size()) + count_ + 1;
+  return count_ * static_cast<int>(basis_.size()) + count_;
 }
 
 FoeModel FoeObjective::model(const std::vector<double>& theta) const {
@@ -180,28 +244,18 @@ FoeModel FoeObjective::model(const std::vector<double>& theta) const {
   return model;
 }
 
-double FoeObjective::step(const std::vector<double>& theta) const {
-  return std::exp(theta.back());
-}
-
 std::vector<double> FoeObjective::initial_parameters() const {
   const int functions = static_cast<int>(basis_.size());
-  std::vector<double> theta(parameter_count(), 0.0);
-  double lipschitz = 0;  // ‖H‖ ≤ Σ α_i ‖J_i‖₁² since |ψ'| ≤ 1
-  for (int i = 0; i < count_; ++i) {
-    theta[i * functions + i] = 1;
-    lipschitz += std::pow(cv::norm(basis_[i] * coefficient_scale_, cv::NORM_L1), 2);
-  }
-  theta.back() = -std::log(std::max(lipschitz, 1e-300));  // η = 1 / L
+  std::vector<double> theta(parameter_count(), 0.0);  // α = 1
+  for (int i = 0; i < count_; ++i) theta[i * functions + i] = 1;
   return theta;
 }
 
 double FoeObjective::evaluate(const std::vector<double>& theta,
                               std::vector<double>* gradient) const {
   const FoeModel foe = model(theta);
-  const double eta = step(theta);
   const int taps = size_ * size_;
-  const int raw = taps * count_ + count_ + 1;  // taps, α, η
+  const int raw = taps * count_ + count_;  // taps, α
   // One slot per sample, summed in sample order: the same at any thread count.
   std::vector<double> losses(samples_.size());
   std::vector<std::vector<double>> raws(gradient ? samples_.size() : 0, std::vector<double>(raw));
@@ -209,8 +263,7 @@ double FoeObjective::evaluate(const std::vector<double>& theta,
   for (int t = 0; t < threads_; ++t) {
     workers.emplace_back([&, t] {
       for (size_t s = t; s < samples_.size(); s += threads_) {
-        losses[s] =
-            sample_loss(foe, eta, samples_[s], starts_[s], steps_, gradient ? &raws[s] : nullptr);
+        losses[s] = sample_loss(foe, samples_[s], starts_[s], gradient ? &raws[s] : nullptr);
       }
     });
   }
@@ -224,7 +277,7 @@ double FoeObjective::evaluate(const std::vector<double>& theta,
   for (const std::vector<double>& r : raws) {
     for (int k = 0; k < raw; ++k) total[k] += r[k] / n;
   }
-  // Chain rule to θ: taps = scale · Σ_j θ_ij B_j, α = exp(a), η = exp(log η).
+  // Chain rule to θ: taps = scale · Σ_j θ_ij B_j, α = exp(a).
   const int functions = static_cast<int>(basis_.size());
   gradient->assign(parameter_count(), 0.0);
   for (int i = 0; i < count_; ++i) {
@@ -237,24 +290,7 @@ double FoeObjective::evaluate(const std::vector<double>& theta,
     }
     (*gradient)[functions * count_ + i] = total[taps * count_ + i] * foe.alphas[i];
   }
-  gradient->back() = total.back() * eta;
   return loss;
-}
-
-cv::Mat FoeObjective::unrolled(const std::vector<double>& theta, const HoleSample& sample) const {
-  const FoeModel foe = model(theta);
-  cv::Mat truth32, start32, x, mask;
-  const cv::Mat truth = sample.truth / foe_input_divisor(foe, sample.truth, sample.mask);
-  truth.convertTo(truth32, CV_32F);
-  HarmonicInpainter().inpaint(truth32, sample.mask, start32);
-  start32.convertTo(x, CV_64F);
-  sample.mask.convertTo(mask, CV_64F, 1.0 / 255);
-  for (int t = 0; t < steps_; ++t) {
-    cv::Mat g;
-    foe_energy(foe, x, &g);
-    x -= step(theta) * mask.mul(g);
-  }
-  return x * foe_input_divisor(foe, sample.truth, sample.mask);
 }
 
 namespace {
@@ -293,10 +329,8 @@ FoeTraining train_foe(const std::vector<HoleSample>& training,
                       const std::vector<HoleSample>& validation,
                       const FoeTrainingOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  const FoeObjective objective(training, options.size, options.count, options.steps,
-                               options.threads);
-  const FoeObjective held_out(validation, options.size, options.count, options.steps,
-                              options.threads);
+  const FoeObjective objective(training, options.size, options.count, options.threads);
+  const FoeObjective held_out(validation, options.size, options.count, options.threads);
   std::vector<double> theta = objective.initial_parameters();
   FoeTraining result;
   result.training_loss_start = objective.evaluate(theta, nullptr);
@@ -315,7 +349,6 @@ FoeTraining train_foe(const std::vector<HoleSample>& training,
   ceres::Solve(solver, problem, theta.data(), &summary);
 
   result.model = objective.model(theta);
-  result.step = objective.step(theta);
   result.training_loss_end = objective.evaluate(theta, nullptr);
   result.validation_loss_end = held_out.evaluate(theta, nullptr);
   result.iterations = static_cast<int>(summary.iterations.size()) - 1;

@@ -30,9 +30,9 @@ std::vector<HoleSample> wave_samples(int count, int size, unsigned seed) {
   return samples;
 }
 
-// The reverse pass through the unrolled steps matches central finite differences of the objective.
+// The implicit gradient at the MAP matches central finite differences of the objective.
 TEST(FoeObjective, GradientMatchesFiniteDifferences) {
-  const FoeObjective objective(wave_samples(2, 10, 1), 3, 2, 3, 2);
+  const FoeObjective objective(wave_samples(2, 10, 1), 3, 2, 2);
   std::vector<double> theta = objective.initial_parameters();
   std::mt19937 random(2);
   std::uniform_real_distribution<double> jitter(-0.2, 0.2);
@@ -41,7 +41,7 @@ TEST(FoeObjective, GradientMatchesFiniteDifferences) {
   objective.evaluate(theta, &gradient);
   ASSERT_EQ(static_cast<int>(gradient.size()), objective.parameter_count());
   for (int k = 0; k < objective.parameter_count(); ++k) {
-    const double h = 1e-6 * std::max(1.0, std::abs(theta[k]));
+    const double h = 1e-4 * std::max(1.0, std::abs(theta[k]));
     std::vector<double> up = theta, down = theta;
     up[k] += h;
     down[k] -= h;
@@ -55,7 +55,7 @@ TEST(FoeObjective, GradientMatchesFiniteDifferences) {
 // The objective does not depend on the thread count.
 TEST(FoeObjective, SameAtAnyThreadCount) {
   const std::vector<HoleSample> samples = wave_samples(5, 12, 3);
-  const FoeObjective one(samples, 3, 4, 5, 1), three(samples, 3, 4, 5, 3);
+  const FoeObjective one(samples, 3, 4, 1), three(samples, 3, 4, 3);
   const std::vector<double> theta = one.initial_parameters();
   std::vector<double> g1, g3;
   EXPECT_EQ(one.evaluate(theta, &g1), three.evaluate(theta, &g3));
@@ -66,7 +66,6 @@ TEST(FoeObjective, SameAtAnyThreadCount) {
 TEST(TrainFoe, ATinyRunLowersTheValidationLoss) {
   FoeTrainingOptions options;
   options.count = 4;
-  options.steps = 8;
   options.iterations = 15;
   const FoeTraining training = train_foe(wave_samples(12, 16, 5), wave_samples(6, 16, 77), options);
   EXPECT_LT(training.training_loss_end, training.training_loss_start);

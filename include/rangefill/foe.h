@@ -59,6 +59,18 @@ double foe_energy(const FoeModel& model, const cv::Mat& x, cv::Mat* gradient = n
 double foe_energy_of_unknowns(const FoeModel& model, const cv::Mat& x, const cv::Mat& mask,
                               cv::Mat* gradient = nullptr);
 
+struct FoeMapOptions {
+  int max_iterations = 200;           // L-BFGS iterations
+  double function_tolerance = 1e-7;   // stop when |ΔE| / E falls below this
+  double gradient_tolerance = 1e-10;  // or when max |∂E/∂x| over the unknowns does
+};
+
+/// The MAP estimate under `model`: `start` (CV_64F, already divided by foe_input_divisor) with its
+/// pixels under `mask` (CV_8U, non-zero = unknown) moved to a local minimum of E by L-BFGS (Ceres'
+/// GradientProblemSolver), the others returned unchanged. Deterministic.
+cv::Mat foe_map(const FoeModel& model, const cv::Mat& start, const cv::Mat& mask,
+                const FoeMapOptions& options = {});
+
 /// J ⋆ x (correlation, kernel CV_64F of odd size) at the pixels where the kernel lies inside x,
 /// 0 elsewhere. Plain loops: the same value at any thread count, unlike cv::filter2D.
 cv::Mat foe_response(const cv::Mat& x, const cv::Mat& kernel);

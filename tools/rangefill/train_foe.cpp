@@ -74,10 +74,9 @@ int run_train(const TrainCommand& command) {
       "the residual a back-end receives in rangefill's pipeline: zone depth normalised to [0, 1] "
       "(eq. 7-8) minus the quadric fitted to the known pixels within 3 px of the hole";
   std::ostringstream training_text;
-  training_text << "loss-specific: mean squared error at the masked pixels after " << options.steps
-                << " gradient steps (step " << result.step
-                << ") from the harmonic fill, L-BFGS over the filters (DCT basis without DC) and "
-                   "log alphas; "
+  training_text << "loss-specific: mean squared error at the masked pixels of the MAP estimate "
+                   "from the harmonic fill, gradient by implicit differentiation, L-BFGS over the "
+                   "filters (DCT basis without DC) and log alphas; "
                 << data << "; loss " << result.training_loss_start << " -> "
                 << result.training_loss_end << " (validation " << result.validation_loss_start
                 << " -> " << result.validation_loss_end << "), " << result.iterations
@@ -104,8 +103,6 @@ void add_train_foe_command(CLI::App& app, Runner& runner) {
   sub->add_option("--name", command->name, "The model's name")->capture_default_str();
   sub->add_option("--size", command->training.size, "Filter size (odd)")->capture_default_str();
   sub->add_option("--count", command->training.count, "Number of filters")->capture_default_str();
-  sub->add_option("--steps", command->training.steps, "Inference steps unrolled")
-      ->capture_default_str();
   sub->add_option("--iterations", command->training.iterations, "L-BFGS iterations")
       ->capture_default_str();
   sub->add_option("--patches", command->patches.count, "Patches per mesh")->capture_default_str();
