@@ -39,8 +39,9 @@ std::vector<std::string> split_list(const std::string& text) {
   return items;
 }
 
-// Files named on the command line, directories expanded to their mesh files in name order.
-std::vector<std::filesystem::path> mesh_files(const std::vector<std::string>& arguments) {
+std::vector<std::filesystem::path> files_from_arguments(
+    const std::vector<std::string>& arguments,
+    const std::function<bool(const std::filesystem::path&)>& wanted) {
   std::vector<std::filesystem::path> files;
   for (const std::string& argument : arguments) {
     if (!std::filesystem::is_directory(argument)) {
@@ -50,16 +51,26 @@ std::vector<std::filesystem::path> mesh_files(const std::vector<std::string>& ar
     std::vector<std::filesystem::path> found;
     for (const std::filesystem::directory_entry& entry :
          std::filesystem::directory_iterator(argument)) {
-      const std::string extension = entry.path().extension().string();
-      if (extension == ".ply" || extension == ".obj" || extension == ".off" ||
-          extension == ".stl") {
-        found.push_back(entry.path());
-      }
+      if (wanted(entry.path())) found.push_back(entry.path());
     }
     std::sort(found.begin(), found.end());
     files.insert(files.end(), found.begin(), found.end());
   }
   return files;
+}
+
+std::vector<std::filesystem::path> mesh_files(const std::vector<std::string>& arguments) {
+  return files_from_arguments(arguments, [](const std::filesystem::path& path) {
+    const std::string extension = path.extension().string();
+    return extension == ".ply" || extension == ".obj" || extension == ".off" || extension == ".stl";
+  });
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0;
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
 }
 
 bool stdout_is_terminal() {

@@ -28,8 +28,17 @@ class UsageError : public std::runtime_error {
 /// "a,b,,c" → {"a", "b", "c"}.
 std::vector<std::string> split_list(const std::string& text);
 
-/// Files named on the command line, directories expanded to their mesh files in name order.
+/// Files named on the command line, directories expanded to the files in them that `wanted`
+/// accepts, in name order.
+std::vector<std::filesystem::path> files_from_arguments(
+    const std::vector<std::string>& arguments,
+    const std::function<bool(const std::filesystem::path&)>& wanted);
+
+/// files_from_arguments taking the mesh files (.ply, .obj, .off, .stl).
 std::vector<std::filesystem::path> mesh_files(const std::vector<std::string>& arguments);
+
+/// The median of `values`; 0 when empty.
+double median(std::vector<double> values);
 
 /// The command line as typed (set once by main), for reports that say how they were made.
 void set_command_line(int argc, char** argv);

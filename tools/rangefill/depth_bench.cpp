@@ -78,37 +78,12 @@ struct Tally {
   std::vector<double> milliseconds;
 };
 
-double median(std::vector<double> values) {
-  if (values.empty()) return 0;
-  std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
-}
-
 template <typename Run>
 double milliseconds_of(Run run) {
   const auto start = std::chrono::steady_clock::now();
   run();
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
       .count();
-}
-
-// Files named on the command line, directories expanded to their depth images in name order.
-std::vector<fs::path> depth_files(const std::vector<std::string>& arguments) {
-  std::vector<fs::path> files;
-  for (const std::string& argument : arguments) {
-    if (!fs::is_directory(argument)) {
-      files.emplace_back(argument);
-      continue;
-    }
-    std::vector<fs::path> found;
-    for (const fs::directory_entry& entry : fs::directory_iterator(argument)) {
-      if (is_depth_image_path(entry.path())) found.push_back(entry.path());
-    }
-    std::sort(found.begin(), found.end());
-    files.insert(files.end(), found.begin(), found.end());
-  }
-  return files;
 }
 
 int run_depth_bench(const DepthBenchCommand& command) {
@@ -140,7 +115,7 @@ int run_depth_bench(const DepthBenchCommand& command) {
           {"rendered", file.stem().string() + "-" + std::to_string(view), millimetres});
     }
   }
-  for (const fs::path& file : depth_files(command.frames)) {
+  for (const fs::path& file : files_from_arguments(command.frames, is_depth_image_path)) {
     cv::Mat depth = read_depth_image(file);
     if (depth.type() == CV_32FC1) depth.convertTo(depth, CV_16U, 1000);  // NaN → 0
     frames.push_back({"sensor", file.stem().string(), depth});
