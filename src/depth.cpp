@@ -163,7 +163,8 @@ cv::Mat fill_from_source(const cv::Mat& z, const cv::Mat& hole, const cv::Mat& s
   normalised.copyTo(image.depth, source);
 
   const Trend trend = fit_trend(image, options.trend, options.trend_ring);
-  const cv::Mat trend_image = trend.image(z.size());
+  const cv::Mat trend_image =
+      trend.kind == TrendKind::none ? cv::Mat::zeros(z.size(), CV_32F) : trend.image(z.size());
   cv::Mat restored;
   inpainter.inpaint(image.depth - trend_image, image.labels != kKnownPixel, restored);
   restored += trend_image;
