@@ -388,12 +388,18 @@ void rasterize(const std::array<Vec3, 3>& corners, const CameraIntrinsics& camer
   const Vec3 &a = image[0], &b = image[1], &c = image[2];
   const double area2 = (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
   if (area2 == 0) return;  // seen edge-on
-  const int col_begin = std::max(0, static_cast<int>(std::ceil(std::min({a.x(), b.x(), c.x()}))));
-  const int col_end =
-      std::min(depth.cols - 1, static_cast<int>(std::floor(std::max({a.x(), b.x(), c.x()}))));
-  const int row_begin = std::max(0, static_cast<int>(std::ceil(std::min({a.y(), b.y(), c.y()}))));
-  const int row_end =
-      std::min(depth.rows - 1, static_cast<int>(std::floor(std::max({a.y(), b.y(), c.y()}))));
+  // The pixel range of the bounding box, clamped before any conversion (corners near the camera
+  // project far outside the image).
+  const auto first = [](double lowest, int size) {
+    return static_cast<int>(std::clamp(std::ceil(lowest), 0.0, static_cast<double>(size)));
+  };
+  const auto last = [](double highest, int size) {
+    return static_cast<int>(std::clamp(std::floor(highest), -1.0, size - 1.0));
+  };
+  const int col_begin = first(std::min({a.x(), b.x(), c.x()}), depth.cols);
+  const int col_end = last(std::max({a.x(), b.x(), c.x()}), depth.cols);
+  const int row_begin = first(std::min({a.y(), b.y(), c.y()}), depth.rows);
+  const int row_end = last(std::max({a.y(), b.y(), c.y()}), depth.rows);
   for (int row = row_begin; row <= row_end; ++row) {
     for (int col = col_begin; col <= col_end; ++col) {
       double inverse_z = 0;
