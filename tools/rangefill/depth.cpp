@@ -1,7 +1,6 @@
 // rangefill depth IN -o OUT, or --batch DIR --out-dir DIR: fill the holes of depth images.
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <mutex>
@@ -182,10 +181,6 @@ int run_batch(const DepthCommand& command) {
 }
 
 int run_depth(DepthCommand& command) {
-  // OpenCV builds with the bundled OpenEXR read and write EXR only when this is set before the
-  // first EXR file (opencv#21326); Debian's, built against the system OpenEXR, do by default. A
-  // value the user set is kept.
-  ::setenv("OPENCV_IO_ENABLE_OPENEXR", "1", 0);
   command.options.trend = trend_from_name(command.trend);
   if (command.batch.empty() == command.input.empty()) {
     throw UsageError("give an input file (with -o OUT) or --batch DIR (with --out-dir DIR)");

@@ -1,5 +1,6 @@
 // rangefill: one binary, one sub-command per job. Exit codes: 0 ok, 2 usage error, 3 unreadable or
-// invalid input, 4 processing failure, 5 partial repair. Errors are one line on stderr.
+// invalid input, 4 processing failure, 5 partial result. Errors are one line on stderr.
+#include <cstdlib>
 #include <iostream>
 
 #include "cli.h"
@@ -20,6 +21,10 @@ int main(int argc, char** argv) {
   cli::add_train_foe_command(app, runner);
 
   cli::set_command_line(argc, argv);
+  // OpenCV builds with the bundled OpenEXR read and write EXR (depth images) only when this is set
+  // before the first EXR file (opencv#21326); Debian's, built against the system OpenEXR, do by
+  // default. A value the user set is kept.
+  ::setenv("OPENCV_IO_ENABLE_OPENEXR", "1", 0);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
