@@ -126,11 +126,8 @@ int run_batch(const DepthCommand& command) {
   }
 
   // Every depth image of the directory in name order; this shard takes every shards-th from shard.
-  std::vector<fs::path> all, files;
-  for (const fs::directory_entry& entry : fs::directory_iterator(command.batch)) {
-    if (entry.is_regular_file() && is_depth_image_path(entry.path())) all.push_back(entry.path());
-  }
-  std::sort(all.begin(), all.end());
+  const std::vector<fs::path> all = files_from_arguments({command.batch}, is_depth_image_path);
+  std::vector<fs::path> files;
   for (size_t i = shard; i < all.size(); i += shards) files.push_back(all[i]);
 
   std::vector<FileOutcome> outcomes(files.size());
