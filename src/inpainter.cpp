@@ -46,13 +46,21 @@ std::vector<std::string> inpainter_names() {
   return names;
 }
 
-std::unique_ptr<Inpainter> make_inpainter(std::string_view name, const InpainterOptions& options) {
+std::unique_ptr<Inpainter> make_inpainter(std::string_view spec, const InpainterOptions& options) {
+  const size_t colon = spec.find(':');
+  const std::string_view name = spec.substr(0, colon);
+  if (name == "foe" && colon != std::string_view::npos) {
+    InpainterOptions with_model = options;
+    with_model.model = std::string(spec.substr(colon + 1));
+    return make_inpainter(name, with_model);
+  }
   for (const Registration& backend : registry()) {
-    if (name == backend.name) return backend.make(options);
+    if (spec == backend.name) return backend.make(options);
   }
   std::string known;
   for (const std::string& n : inpainter_names()) known += (known.empty() ? "" : ", ") + n;
-  throw InvalidInput("unknown inpainter '" + std::string(name) + "' (known: " + known + ")");
+  throw InvalidInput("unknown inpainter '" + std::string(spec) + "' (known: " + known +
+                     ", foe:MODEL)");
 }
 
 void check_inpaint_arguments(cv::InputArray depth, cv::InputArray mask, const std::string& who) {

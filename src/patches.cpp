@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "rangefill/holes.h"
+#include "rangefill/punch.h"
 #include "rangefill/range_image.h"
 #include "rangefill/topology.h"
 
@@ -143,6 +144,20 @@ HoleSample make_hole_sample(const cv::Mat& patch, const cv::Mat& mask, TrendKind
   residual.convertTo(sample.truth, CV_64F);
   sample.mask = mask.clone();
   return sample;
+}
+
+std::vector<HoleSample> hole_samples(const Mesh& mesh, const std::string& name,
+                                     const HoleSampleOptions& options) {
+  PatchOptions patch_options = options.patches;
+  patch_options.seed = seed_for_mesh(options.patches.seed, name);
+  std::vector<HoleSample> samples;
+  const std::vector<cv::Mat> patches = depth_patches(mesh, patch_options);
+  for (size_t p = 0; p < patches.size(); ++p) {
+    const cv::Mat mask = blob_mask(patches[p].size(), options.min_hole, options.max_hole,
+                                   options.margin, patch_options.seed + p);
+    samples.push_back(make_hole_sample(patches[p], mask));
+  }
+  return samples;
 }
 
 }  // namespace rangefill

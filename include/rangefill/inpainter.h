@@ -27,8 +27,9 @@ class Inpainter {
   virtual void inpaint(cv::InputArray depth, cv::InputArray mask, cv::OutputArray out) const = 0;
 };
 
-/// The back-ends by name ("telea", "ns", ...). Throws InvalidInput for an unknown name, listing
-/// the known ones.
+/// The back-ends by name ("telea", "ns", ...), or by "foe:MODEL" to choose the FoE model (a shipped
+/// model's name or a model file; overrides options.model). Throws InvalidInput for an unknown
+/// name, listing the known ones.
 std::unique_ptr<Inpainter> make_inpainter(std::string_view name,
                                           const InpainterOptions& options = {});
 

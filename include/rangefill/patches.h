@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -43,5 +44,17 @@ struct HoleSample {
 /// The sample of `patch` (CV_32F) with `mask`, the trend fitted like RepairOptions' defaults.
 HoleSample make_hole_sample(const cv::Mat& patch, const cv::Mat& mask,
                             TrendKind trend = TrendKind::quadric, double ring = 3);
+
+struct HoleSampleOptions {
+  PatchOptions patches;
+  double min_hole = 0.05, max_hole = 0.30;  // share of the patch's pixels masked
+  int margin = 4;                           // masks keep this far from the patch border
+};
+
+/// The data `train-foe` fits: depth_patches of `mesh`, seeded by
+/// seed_for_mesh(options.patches.seed, name) so each mesh gets its own patches, each with a
+/// blob_mask and made a sample like make_hole_sample's defaults.
+std::vector<HoleSample> hole_samples(const Mesh& mesh, const std::string& name,
+                                     const HoleSampleOptions& options);
 
 }  // namespace rangefill

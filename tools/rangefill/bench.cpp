@@ -46,13 +46,7 @@ int run_bench(const BenchCommand& command) {
   std::vector<TrendKind> trends;
   for (const std::string& name : split_list(command.trends))
     trends.push_back(trend_from_name(name));
-  for (const std::string& name : inpainters) {
-    const std::vector<std::string> known = inpainter_names();
-    if (std::find(known.begin(), known.end(), name) == known.end()) {
-      throw UsageError("--inpainters: unknown back-end '" + name + "' (known: " + join(known) +
-                       ")");
-    }
-  }
+  for (const std::string& name : inpainters) check_inpainter(name, "--inpainters");
   const std::vector<fs::path> files = mesh_files(command.meshes);
   if (files.empty()) throw UsageError("--meshes: no mesh files found");
 

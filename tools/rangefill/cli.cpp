@@ -7,6 +7,10 @@
 #include <iostream>
 #include <sstream>
 
+#include "rangefill/errors.h"
+#include "rangefill/foe.h"
+#include "rangefill/inpainter.h"
+
 namespace rangefill::cli {
 
 Mesh load_mesh(const std::string& path) {
@@ -98,6 +102,19 @@ std::string join(const std::vector<std::string>& items) {
   std::string joined;
   for (const std::string& item : items) joined += (joined.empty() ? "" : ", ") + item;
   return joined;
+}
+
+void check_inpainter(const std::string& spec, const std::string& option) {
+  try {
+    make_inpainter(spec);
+  } catch (const InvalidInput& error) {
+    throw UsageError(option + ": " + error.what());
+  }
+}
+
+std::string inpainter_help() {
+  return "Back-end: " + join(inpainter_names()) + ", or foe:MODEL with MODEL one of " +
+         join(shipped_foe_models()) + " or a model file";
 }
 
 void print_json(const nlohmann::json& value) {

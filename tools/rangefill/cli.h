@@ -44,6 +44,12 @@ double median(std::vector<double> values);
 void set_command_line(int argc, char** argv);
 const std::string& command_line();
 
+/// Throws UsageError naming `option` unless make_inpainter accepts `spec` ("foe:MODEL" included).
+void check_inpainter(const std::string& spec, const std::string& option);
+
+/// The help text of an --inpainter option.
+std::string inpainter_help();
+
 /// "a, b, c" for messages and help texts.
 std::string join(const std::vector<std::string>& items);
 

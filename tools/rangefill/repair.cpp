@@ -117,6 +117,7 @@ int run_repair(RepairCommand& command) {
     throw UsageError(command.output + ": is the input; pass --in-place to overwrite it");
   }
   format_from_extension(command.output);  // fail before the work, not after
+  check_inpainter(command.options.inpainter, "--inpainter");
   command.options.holes = parse_hole_ids(command.holes);
   command.options.trend = trend_from_name(command.trend);
   command.options.skip_longest_loops = !command.fill_all;
@@ -197,9 +198,7 @@ void add_repair_command(CLI::App& app, Runner& runner) {
          "What takes a hole the filler cannot fill: front, least-area, both (in that order), "
          "or none")
       ->capture_default_str();
-  sub->add_option("--inpainter", options.inpainter, "Back-end: " + join(inpainter_names()))
-      ->capture_default_str()
-      ->check(CLI::IsMember(inpainter_names()));
+  sub->add_option("--inpainter", options.inpainter, inpainter_help())->capture_default_str();
   sub->add_option("--radius", options.inpainting.radius,
                   "Neighbourhood radius in pixels (telea, ns)")
       ->capture_default_str()

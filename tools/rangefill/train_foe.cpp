@@ -2,13 +2,12 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "cli.h"
 #include "rangefill/foe_training.h"
+#include "rangefill/io.h"
 #include "rangefill/patches.h"
-#include "rangefill/punch.h"
 
 namespace rangefill::cli {
 
@@ -19,39 +18,34 @@ namespace fs = std::filesystem;
 struct TrainCommand {
   std::vector<std::string> meshes;
   std::string validation = "bunny.ply,fandisk.ply,spot.ply", output, name = "depth";
-  PatchOptions patches;
+  HoleSampleOptions samples;
   FoeTrainingOptions training;
-  double min_hole = 0.05, max_hole = 0.30;
 };
 
-// Patches of every mesh, each with one blob mask; split by mesh name into training and validation.
+// Samples of every mesh, split by mesh name into training and validation.
 void cut_samples(const TrainCommand& command, std::vector<HoleSample>& training,
                  std::vector<HoleSample>& validation, std::string& data) {
   const std::vector<std::string> held_out = split_list(command.validation);
-  const int margin = command.training.size / 2 + 2;
   int training_meshes = 0;
   for (const fs::path& file : mesh_files(command.meshes)) {
     const std::string name = file.filename().string();
     const bool validating = std::count(held_out.begin(), held_out.end(), name) > 0;
-    PatchOptions options = command.patches;
-    options.seed = seed_for_mesh(command.patches.seed, name);
-    const std::vector<cv::Mat> patches = depth_patches(load_mesh(file.string()), options);
-    for (size_t p = 0; p < patches.size(); ++p) {
-      const cv::Mat mask = blob_mask(patches[p].size(), command.min_hole, command.max_hole, margin,
-                                     options.seed + p);
-      (validating ? validation : training).push_back(make_hole_sample(patches[p], mask));
-    }
+    const std::vector<HoleSample> samples =
+        hole_samples(load_mesh(file.string()), name, command.samples);
+    (validating ? validation : training)
+        .insert((validating ? validation : training).end(), samples.begin(), samples.end());
     training_meshes += !validating;
-    std::printf("%-20s %3zu patches (%s)\n", name.c_str(), patches.size(),
+    std::printf("%-20s %3zu patches (%s)\n", name.c_str(), samples.size(),
                 validating ? "validation" : "training");
     std::fflush(stdout);
   }
+  const PatchOptions& patches = command.samples.patches;
   std::ostringstream text;
   text << training.size() << " training patches from " << training_meshes << " meshes, "
        << validation.size() << " validation patches from " << command.validation << "; "
-       << command.patches.size << "x" << command.patches.size
-       << " pixels at q = " << command.patches.beta << " d_m, blob masks " << command.min_hole * 100
-       << "-" << command.max_hole * 100 << "% of the pixels, seed " << command.patches.seed;
+       << patches.size << "x" << patches.size << " pixels at q = " << patches.beta
+       << " d_m, blob masks " << command.samples.min_hole * 100 << "-"
+       << command.samples.max_hole * 100 << "% of the pixels, seed " << patches.seed;
   data = text.str();
 }
 
@@ -83,7 +77,7 @@ int run_train(const TrainCommand& command) {
                 << " iterations, " << static_cast<int>(result.seconds)
                 << " s; command: " << command_line();
   model.training = training_text.str();
-  std::ofstream(command.output) << serialize_foe_model(model);
+  write_file_atomically(serialize_foe_model(model), command.output);
   std::printf("%s\nvalidation loss %.6e -> %.6e; wrote %s\n", result.stop.c_str(),
               result.validation_loss_start, result.validation_loss_end, command.output.c_str());
   return kOk;
@@ -105,10 +99,11 @@ void add_train_foe_command(CLI::App& app, Runner& runner) {
   sub->add_option("--count", command->training.count, "Number of filters")->capture_default_str();
   sub->add_option("--iterations", command->training.iterations, "L-BFGS iterations")
       ->capture_default_str();
-  sub->add_option("--patches", command->patches.count, "Patches per mesh")->capture_default_str();
-  sub->add_option("--patch-size", command->patches.size, "Patch size in pixels")
+  sub->add_option("--patches", command->samples.patches.count, "Patches per mesh")
       ->capture_default_str();
-  sub->add_option("--seed", command->patches.seed, "Seed of patches and masks")
+  sub->add_option("--patch-size", command->samples.patches.size, "Patch size in pixels")
+      ->capture_default_str();
+  sub->add_option("--seed", command->samples.patches.seed, "Seed of patches and masks")
       ->capture_default_str();
   sub->add_option("--threads", command->training.threads, "Threads")->capture_default_str();
   sub->callback([command, &runner] { runner = [command] { return run_train(*command); }; });
