@@ -6,6 +6,7 @@ packages=(
   libeigen3-dev libopencv-dev libpcl-dev libceres-dev
   libcgal-dev libgtest-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev
+  clang-14 libclang-rt-14-dev  # libFuzzer and the sanitizer runtimes (scripts/fuzz.sh)
 )
 missing=()
 for package in "${packages[@]}"; do

@@ -3,6 +3,7 @@
 // (we need provenance back), allocates from the header's counts before reading, and prints to the
 // console; there is no other maintained PLY library in Debian.
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
 
@@ -55,6 +56,35 @@ size_t type_size(ScalarType type) {
 
 bool is_integer(ScalarType type) {
   return type != ScalarType::float32 && type != ScalarType::float64;
+}
+
+// The values a type holds (a floating-point type: its finite ones).
+template <typename T>
+std::pair<double, double> range_of() {
+  return {static_cast<double>(std::numeric_limits<T>::lowest()),
+          static_cast<double>(std::numeric_limits<T>::max())};
+}
+
+std::pair<double, double> value_range(ScalarType type) {
+  switch (type) {
+    case ScalarType::int8:
+      return range_of<std::int8_t>();
+    case ScalarType::uint8:
+      return range_of<std::uint8_t>();
+    case ScalarType::int16:
+      return range_of<std::int16_t>();
+    case ScalarType::uint16:
+      return range_of<std::uint16_t>();
+    case ScalarType::int32:
+      return range_of<std::int32_t>();
+    case ScalarType::uint32:
+      return range_of<std::uint32_t>();
+    case ScalarType::float32:
+      return range_of<float>();
+    case ScalarType::float64:
+      return range_of<double>();
+  }
+  return {0, 0};
 }
 
 bool parse_type(std::string_view name, ScalarType& type) {
@@ -154,6 +184,12 @@ PlyHeader parse_header(std::string_view bytes, const std::string& name) {
       }
       property.name = std::string(reader.token());
       if (property.name.empty()) fail(name, where + ": property without a name");
+      for (const PlyProperty& other : header.elements.back().properties) {
+        if (other.name == property.name) {
+          fail(name, where + ": property '" + property.name + "' declared twice in element '" +
+                         header.elements.back().name + "'");
+        }
+      }
       header.elements.back().properties.push_back(std::move(property));
     } else {
       fail(name, where + ": unexpected '" + std::string(keyword) + "'");
@@ -211,6 +247,15 @@ class BodyReader {
     return static_cast<long long>(value);
   }
 
+  // A provenance value: a hole id or kOriginal, so an integer that an int holds.
+  int hole_id(double value) const {
+    if (!(std::floor(value) == value && std::abs(value) <= std::numeric_limits<int>::max())) {
+      error(std::string(kProvenanceProperty) + " value " + std::to_string(value) +
+            " is not a hole id");
+    }
+    return static_cast<int>(value);
+  }
+
   [[noreturn]] void error(const std::string& what) const {
     fail(name_,
          (element_ ? *element_ + " " + std::to_string(index_) + ": " : std::string()) + what);
@@ -232,8 +277,10 @@ class BodyReader {
       error("expected a number, found " + quote(token));
     }
     if (type == ScalarType::float32) value = single;
-    if (is_integer(type) && value != static_cast<double>(static_cast<long long>(value))) {
-      error("expected an integer, found " + quote(token));
+    const auto [lowest, highest] = value_range(type);
+    if (is_integer(type) && !(std::floor(value) == value && value >= lowest && value <= highest)) {
+      error("expected an integer of type " + std::string(type_name(type)) + ", found " +
+            quote(token));
     }
     return value;
   }
@@ -310,30 +357,64 @@ bool has_slot(const std::vector<VertexSlot>& slots, VertexSlot slot) {
   return std::find(slots.begin(), slots.end(), slot) != slots.end();
 }
 
+// The three slots from `first` on (x y z, nx ny nz or red green blue).
+bool in_triple(VertexSlot slot, VertexSlot first) {
+  return slot >= first && static_cast<int>(slot) < static_cast<int>(first) + 3;
+}
+
+// A normal or a colour is read as one only when its three components are there (a colour's of
+// one type); otherwise its components are carried through as extra properties, so nothing is lost.
+void keep_triple_whole(const PlyElement& element, std::vector<VertexSlot>& slots, VertexSlot first,
+                       bool same_type) {
+  std::vector<size_t> components;
+  for (size_t i = 0; i < slots.size(); ++i) {
+    if (in_triple(slots[i], first)) components.push_back(i);
+  }
+  bool whole = components.size() == 3;
+  for (size_t i : components) {
+    whole = whole && (!same_type ||
+                      element.properties[i].type == element.properties[components.front()].type);
+  }
+  if (whole) return;
+  for (size_t i : components) slots[i] = VertexSlot::extra;
+}
+
+// The type a triple is written back in: float32 when its three components are, else float64
+// (integer coordinates too: generated vertices need fractions).
+ScalarType real_storage(const PlyElement& element, const std::vector<VertexSlot>& slots,
+                        VertexSlot first) {
+  bool single = true;
+  for (size_t i = 0; i < slots.size(); ++i) {
+    if (in_triple(slots[i], first))
+      single = single && element.properties[i].type == ScalarType::float32;
+  }
+  return single ? ScalarType::float32 : ScalarType::float64;
+}
+
 void read_vertices(const PlyElement& element, BodyReader& body, ReadResult& result,
                    const std::string& name) {
   Mesh& mesh = result.mesh;
   std::vector<VertexSlot> slots;
+  for (const PlyProperty& property : element.properties) slots.push_back(vertex_slot(property));
+  for (VertexSlot required : {VertexSlot::x, VertexSlot::y, VertexSlot::z}) {
+    if (!has_slot(slots, required)) body.error("vertex element lacks x, y or z");
+  }
+  keep_triple_whole(element, slots, VertexSlot::nx, false);
+  keep_triple_whole(element, slots, VertexSlot::red, true);
+  mesh.storage.position = real_storage(element, slots, VertexSlot::x);
+  mesh.storage.normal = real_storage(element, slots, VertexSlot::nx);
   std::vector<int> extra_index(element.properties.size(), -1);
   for (size_t i = 0; i < element.properties.size(); ++i) {
     const PlyProperty& property = element.properties[i];
-    slots.push_back(vertex_slot(property));
-    // Integer coordinates are written back as double: generated vertices need fractions.
-    const ScalarType real_type = is_integer(property.type) ? ScalarType::float64 : property.type;
-    if (slots.back() == VertexSlot::x) mesh.storage.position = real_type;
-    if (slots.back() == VertexSlot::nx) mesh.storage.normal = real_type;
-    if (slots.back() == VertexSlot::red) mesh.storage.color = property.type;
-    if (slots.back() == VertexSlot::extra) {
+    if (slots[i] == VertexSlot::red) mesh.storage.color = property.type;
+    if (slots[i] == VertexSlot::extra) {
       extra_index[i] = static_cast<int>(mesh.vertex_properties.size());
       mesh.vertex_properties.push_back({property.name, property.type, {}});
       mesh.vertex_properties.back().values.reserve(element.count);
     }
-    if (slots.back() == VertexSlot::skip) {
+    if (slots[i] == VertexSlot::skip) {
       result.warnings.push_back(name + ": vertex list property '" + property.name + "' ignored");
     }
-  }
-  for (VertexSlot required : {VertexSlot::x, VertexSlot::y, VertexSlot::z}) {
-    if (!has_slot(slots, required)) body.error("vertex element lacks x, y or z");
   }
   const bool normals = has_slot(slots, VertexSlot::nx) && has_slot(slots, VertexSlot::ny) &&
                        has_slot(slots, VertexSlot::nz);
@@ -387,7 +468,7 @@ void read_vertices(const PlyElement& element, BodyReader& body, ReadResult& resu
           color.z() = value * color_scale;
           break;
         case VertexSlot::hole:
-          hole = static_cast<int>(value);
+          hole = body.hole_id(value);
           break;
         case VertexSlot::extra:
           mesh.vertex_properties[extra_index[i]].values.push_back(value);
@@ -447,7 +528,7 @@ void read_faces(const PlyElement& element, BodyReader& body, ReadResult& result,
     }
     const int triangles = faces.add(polygon, f);
     for (int t = 0; t < triangles; ++t) {
-      mesh.face_hole.push_back(hole >= 0 ? static_cast<int>(values[hole]) : kOriginal);
+      mesh.face_hole.push_back(hole >= 0 ? body.hole_id(values[hole]) : kOriginal);
       for (size_t i = 0; i < element.properties.size(); ++i) {
         if (extra_index[i] >= 0) mesh.face_properties[extra_index[i]].values.push_back(values[i]);
       }

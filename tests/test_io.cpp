@@ -573,5 +573,33 @@ TEST(StlIo, AsciiFileWithoutEndsolidIsReadWithAWarning) {
   EXPECT_CONTAINS(result.warnings[0], "endsolid");
 }
 
+// ---------------------------------------------------------------------------------------------
+// The fuzzers' seed corpus (tests/fuzz/corpus/<format>/, with the inputs that once were findings):
+// every file reads, and writes and reads back with the same counts, or fails with one line naming
+// it. Under RANGEFILL_SANITIZE this replays them with the sanitizers.
+
+TEST(FuzzCorpus, EveryFileReadsOrFailsWithOneLineNamingIt) {
+  const fs::path corpus = fs::path(RANGEFILL_TEST_DATA).parent_path() / "fuzz" / "corpus";
+  int files = 0;
+  for (const char* format : {"ply", "obj", "off", "stl"}) {
+    for (const fs::directory_entry& entry : fs::directory_iterator(corpus / format)) {
+      const std::string name = entry.path().filename().string();
+      SCOPED_TRACE(name);
+      ++files;
+      const MeshFormat kind = format_from_extension(std::string("x.") + format);
+      try {
+        const Mesh mesh = parse_mesh(read_file(entry.path()), kind, name).mesh;
+        const Mesh back = parse_mesh(serialize_mesh(mesh, kind), kind, name).mesh;
+        EXPECT_EQ(back.face_count(), mesh.face_count());
+      } catch (const InvalidInput& error) {
+        const std::string message = error.what();
+        EXPECT_EQ(message.rfind(name + ": ", 0), 0u) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+      }
+    }
+  }
+  EXPECT_GE(files, 12);
+}
+
 }  // namespace
 }  // namespace rangefill

@@ -199,6 +199,61 @@ TEST(PlyIo, MalformedFilesGiveOneLineErrors) {
   }
 }
 
+// Found by fuzzing (tests/fuzz): an ASCII value outside its declared integer type was cast
+// unchecked (undefined behaviour) and written back wrapped; a provenance value must be a hole id.
+TEST(PlyIo, AsciiIntegersMustFitTheirDeclaredType) {
+  const std::string header =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nproperty uchar quality\nproperty float rangefill_hole\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n";
+  const std::string face = "3 0 1 2\n";
+  auto vertices = [](const std::string& quality, const std::string& hole) {
+    return "0 0 0 " + quality + " " + hole + "\n1 0 0 0 -1\n0 1 0 0 -1\n";
+  };
+  EXPECT_EQ(message_of(header + vertices("255", "-1") + face), "no error");
+  EXPECT_EQ(message_of(header + vertices("256", "-1") + face),
+            "bad.ply: vertex 0: expected an integer of type uchar, found '256'");
+  EXPECT_EQ(message_of(header + vertices("-1", "-1") + face),
+            "bad.ply: vertex 0: expected an integer of type uchar, found '-1'");
+  EXPECT_EQ(message_of(header + vertices("2.333e26", "-1") + face),
+            "bad.ply: vertex 0: expected an integer of type uchar, found '2.333e26'");
+  EXPECT_NE(message_of(header + vertices("0", "1e30") + face).find("is not a hole id"),
+            std::string::npos);
+  EXPECT_NE(message_of(header + vertices("0", "0.5") + face).find("is not a hole id"),
+            std::string::npos);
+}
+
+// Found by fuzzing: positions were written back in the type of x alone, so a double y or z read
+// with a float x came back rounded (or infinite); a property declared twice lost the first.
+TEST(PlyIo, MixedTypesAndIncompleteTriplesLoseNothing) {
+  const std::string text =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty double y\n"
+      "property float z\nproperty float nx\nproperty uchar red\nproperty float green\n"
+      "property uchar blue\nelement face 1\nproperty list uchar int vertex_indices\n"
+      "end_header\n0 1e300 0 0.5 1 0.5 2\n1 0.1 0 -0.5 3 0.25 4\n0 1 0 1 5 1 6\n3 0 1 2\n";
+  const Mesh mesh = parse_mesh(text, MeshFormat::ply, "mixed.ply").mesh;
+  EXPECT_EQ(mesh.storage.position, ScalarType::float64);
+  EXPECT_EQ(mesh.positions[0].y(), 1e300);
+  EXPECT_EQ(mesh.positions[1].y(), 0.1);
+  EXPECT_FALSE(mesh.has_normals());  // nx alone, and a colour of mixed types, stay properties
+  EXPECT_FALSE(mesh.has_colors());
+  ASSERT_EQ(mesh.vertex_properties.size(), 4u);
+  for (const Encoding encoding : {Encoding::binary, Encoding::ascii}) {
+    WriteOptions options;
+    options.encoding = encoding;
+    const Mesh back = round_trip(mesh, options);
+    testing::expect_bit_identical(back.positions, mesh.positions);
+    ASSERT_EQ(back.vertex_properties.size(), mesh.vertex_properties.size());
+    for (size_t i = 0; i < mesh.vertex_properties.size(); ++i) {
+      EXPECT_EQ(back.vertex_properties[i].name, mesh.vertex_properties[i].name);
+      EXPECT_EQ(back.vertex_properties[i].values, mesh.vertex_properties[i].values);
+    }
+  }
+  EXPECT_EQ(message_of("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
+                       "property float y\nproperty float x\nend_header\n"),
+            "bad.ply: PLY header line 6: property 'x' declared twice in element 'vertex'");
+}
+
 TEST(PlyIo, SharedMeshesRoundTripBitExact) {
   RANGEFILL_REQUIRE_SHARED(data);
   for (const char* file : {"meshes/bunny.ply", "real-holes/face.ply"}) {
