@@ -7,17 +7,6 @@
 
 namespace rangefill {
 
-namespace {
-
-double distance_to_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double t =
-      ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).norm();
-}
-
-}  // namespace
-
 Patch back_project(const Mesh& mesh, const BoundaryLoop& hole, const RangeImage& image,
                    const cv::Mat& restored, const BackProjectionOptions& options) {
   const std::vector<Vec2> polygon = project_loop(mesh, hole, image.frame);

@@ -1,6 +1,8 @@
 #include "rangefill/complex_hole.h"
 
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <optional>
 
 #include "rangefill/geometry2d.h"
@@ -97,6 +99,94 @@ std::optional<Run> front_facing_part(const Mesh& mesh, const MeshTopology& topol
   return best;
 }
 
+// Whether the chord from the vertex at loop position i to the one at j can close a part: it is no
+// edge of the mesh, and at both ends it leaves into the hole, not over the surface. The surface
+// lies left of the loop (holes.h): at a vertex, the hole lies right of the incoming and of the
+// outgoing boundary edge, each in the plane of its face; both when the loop turns right there (a
+// convex corner of the hole), either when it turns left (a reflex one).
+bool valid_chord(const Mesh& mesh, const MeshTopology& topology, const BoundaryLoop& hole, int i,
+                 int j) {
+  const int n = static_cast<int>(hole.vertices.size());
+  const int a = hole.vertices[i], b = hole.vertices[j];
+  if (find_halfedge(mesh, topology, a, b) >= 0 || find_halfedge(mesh, topology, b, a) >= 0) {
+    return false;
+  }
+  // The direction right of the boundary edge from -> to, in the plane of its face.
+  auto right_of = [&](int from, int to) -> std::optional<Vec3> {
+    const int h = find_halfedge(mesh, topology, from, to);
+    if (h < 0) return std::nullopt;
+    return Vec3(
+        (mesh.positions[to] - mesh.positions[from]).cross(triangle_cross(mesh, halfedge_face(h))));
+  };
+  auto enters_hole = [&](int at, int towards) {
+    const int v = hole.vertices[at], previous = hole.vertices[(at + n - 1) % n],
+              next = hole.vertices[(at + 1) % n];
+    const auto right_in = right_of(previous, v), right_out = right_of(v, next);
+    if (!right_in || !right_out) return false;
+    const Vec3 chord = mesh.positions[hole.vertices[towards]] - mesh.positions[v];
+    const bool in = chord.dot(*right_in) > 0, out = chord.dot(*right_out) > 0;
+    const bool turns_right = (mesh.positions[next] - mesh.positions[v]).dot(*right_in) > 0;
+    return turns_right ? in && out : in || out;
+  };
+  return enters_hole(i, j) && enters_hole(j, i);
+}
+
+// Where a closed run is narrowest: the chord between run positions a < b, with at least one
+// vertex between them either way round, of least 3-D length relative to the shorter of the two
+// arcs of the run's polygon (its closing chord included) that it separates, among the chords
+// `allowed` takes. A long thin hole, or one wrapping round a limb, is cut across, not along.
+std::optional<std::pair<int, int>> narrowest_neck(const std::vector<Vec3>& points,
+                                                  const std::function<bool(int, int)>& allowed) {
+  const int m = static_cast<int>(points.size());
+  std::vector<double> arc(m + 1, 0);  // arc[k]: length of the polygon from point 0 to point k
+  for (int k = 0; k < m; ++k) arc[k + 1] = arc[k] + (points[(k + 1) % m] - points[k]).norm();
+  std::optional<std::pair<int, int>> best;
+  double best_ratio = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < m; ++a) {
+    for (int b = a + 2; b < m && b - a <= m - 2; ++b) {
+      const double shorter = std::min(arc[b] - arc[a], arc[m] - (arc[b] - arc[a]));
+      const double ratio = (points[b] - points[a]).norm() / shorter;
+      if (ratio < best_ratio && allowed(a, b)) {
+        best_ratio = ratio;
+        best = std::make_pair(a, b);
+      }
+    }
+  }
+  return best;
+}
+
+// Parts cut off at necks (narrowest_neck): both sides of the hole's narrowest neck, larger first,
+// then, `depth` − 1 times more, the side of each part's own narrowest neck that is a run of the
+// hole.
+std::vector<Run> neck_parts(const Mesh& mesh, const MeshTopology& topology,
+                            const BoundaryLoop& hole, int depth) {
+  const int n = static_cast<int>(hole.vertices.size());
+  auto neck_of = [&](const Run& run) -> std::optional<std::pair<int, int>> {
+    std::vector<Vec3> points;
+    for (int v : run_vertices(hole, run)) points.push_back(mesh.positions[v]);
+    return narrowest_neck(points, [&](int a, int b) {
+      return valid_chord(mesh, topology, hole, (run.start + a) % n, (run.start + b) % n);
+    });
+  };
+  std::vector<Run> parts, level;
+  if (const auto neck = neck_of({0, n})) {
+    const auto [a, b] = *neck;
+    level = {{a, b - a + 1}, {b, n - (b - a) + 1}};
+    if (level[1].length > level[0].length) std::swap(level[0], level[1]);
+  }
+  for (int round = 1; round < depth && !level.empty(); ++round) {
+    std::vector<Run> inner;
+    for (const Run& run : level) {
+      if (const auto neck = neck_of(run))
+        inner.push_back({(run.start + neck->first) % n, neck->second - neck->first + 1});
+    }
+    parts.insert(parts.end(), level.begin(), level.end());
+    level = std::move(inner);
+  }
+  parts.insert(parts.end(), level.begin(), level.end());
+  return parts;
+}
+
 }  // namespace
 
 BoundaryLoop make_loop(const Mesh& mesh, int id, std::vector<int> vertices) {
@@ -123,16 +213,12 @@ std::vector<BoundaryLoop> split_complex_hole(const Mesh& mesh, const MeshTopolog
   if (const auto part = front_facing_part(mesh, topology, hole, frame.normal())) {
     if (const auto simple = simple_part(projected, *part)) candidates.push_back(*simple);
   }
+  for (const Run& part : neck_parts(mesh, topology, hole, 3)) candidates.push_back(part);
   std::vector<BoundaryLoop> parts;
   for (const Run& run : candidates) {
     if (run.length < 3 || run.length >= n) continue;
-    std::vector<int> vertices = run_vertices(hole, run);
-    const int first = vertices.front(), last = vertices.back();
-    if (find_halfedge(mesh, topology, first, last) >= 0 ||
-        find_halfedge(mesh, topology, last, first) >= 0) {
-      continue;  // the chord would double an existing edge
-    }
-    parts.push_back(make_loop(mesh, hole.id, std::move(vertices)));
+    if (!valid_chord(mesh, topology, hole, (run.start + run.length - 1) % n, run.start)) continue;
+    parts.push_back(make_loop(mesh, hole.id, run_vertices(hole, run)));
   }
   return parts;
 }

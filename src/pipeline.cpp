@@ -53,6 +53,22 @@ bool within_size_limits(const BoundaryLoop& loop, const RepairOptions& options) 
          (options.max_hole_area <= 0 || loop.area <= options.max_hole_area);
 }
 
+// The edges of `hole` that no face borders, in the frame's x, y: the chord closing a part of a
+// complex hole (Section VI-C).
+std::vector<std::array<Vec2, 2>> chords_in_frame(const SurfaceContext& surface,
+                                                 const BoundaryLoop& hole, const Frame& frame) {
+  std::vector<std::array<Vec2, 2>> chords;
+  const size_t n = hole.vertices.size();
+  for (size_t k = 0; k < n; ++k) {
+    const int a = hole.vertices[k], b = hole.vertices[(k + 1) % n];
+    if (find_halfedge(surface.mesh, surface.topology, a, b) < 0) {
+      chords.push_back({frame.to_local(surface.mesh.positions[a]).head<2>(),
+                        frame.to_local(surface.mesh.positions[b]).head<2>()});
+    }
+  }
+  return chords;
+}
+
 // A fill triangle meets a face of the surface or a non-adjacent fill triangle.
 bool fill_intersects(const SurfaceContext& surface, const Fill& fill) {
   const int boundary_size = static_cast<int>(fill.boundary.size());
@@ -87,7 +103,7 @@ Fill fill_through_plane(const SurfaceContext& surface, const BoundaryLoop& hole,
 
   RangeImage image = rasterize_zone(mesh, visible, hole, frame, surface.mean_edge, options.image);
   report.gap_pixels = fill_small_gaps(image).pixels;
-  report.rim_support = rim_support(image);
+  report.rim_support = rim_support(image, chords_in_frame(surface, hole, frame));
   if (report.rim_support < options.min_rim_support) {
     throw ProcessingError("hole " + std::to_string(hole.id) + ": the plane sees only " +
                           std::to_string(static_cast<int>(100 * report.rim_support)) +
@@ -138,14 +154,16 @@ std::optional<Fill> fill_through_planes(const SurfaceContext& surface, const Bou
   return std::nullopt;
 }
 
-// Section VI-C: a part of a complex hole, through the planes of that part.
+// Section VI-C: a part of a complex hole, through the planes of that part and its own zone.
 std::optional<Fill> fill_part_through_planes(const SurfaceContext& surface,
-                                             const BoundaryLoop& hole, const Zone& zone,
-                                             const Frame& best_frame, const Inpainter& inpainter,
+                                             const BoundaryLoop& hole, const Frame& best_frame,
+                                             const Inpainter& inpainter,
                                              const RepairOptions& options, HoleReport& report,
                                              std::string& failure) {
   for (const BoundaryLoop& part :
        split_complex_hole(surface.mesh, surface.topology, hole, best_frame)) {
+    const Zone zone = grow_zone(surface.mesh, surface.topology, surface.holes, part,
+                                surface.normals, surface.mean_edge, options.zone);
     const std::vector<Projection> planes =
         find_projections(surface.mesh, surface.topology, zone, part, options.projection).planes;
     if (auto fill =
@@ -251,8 +269,8 @@ Fill fill_hole(const SurfaceContext& surface, const BoundaryLoop& hole, const In
   }
   if (!fill && options.filler == Filler::plane) {
     report.method = "plane, in part";
-    fill = fill_part_through_planes(surface, hole, zone, search.best_frame, inpainter, options,
-                                    report, failure);
+    fill = fill_part_through_planes(surface, hole, search.best_frame, inpainter, options, report,
+                                    failure);
   }
   if (!fill && options.fallback_least_area) {
     try {

@@ -188,12 +188,19 @@ RangeImage rasterize_zone(const Mesh& mesh, const Zone& zone, const BoundaryLoop
   return image;
 }
 
-double rim_support(const RangeImage& image) {
+double rim_support(const RangeImage& image, const std::vector<std::array<Vec2, 2>>& chords) {
   const cv::Mat& labels = image.labels;
+  const double reach = 1.5 * image.step;
+  auto near_chord = [&](int row, int col) {
+    const Vec2 centre(image.x_min + col * image.step, image.y_max - row * image.step);
+    return std::any_of(chords.begin(), chords.end(), [&](const std::array<Vec2, 2>& chord) {
+      return distance_to_segment(centre, chord[0], chord[1]) <= reach;
+    });
+  };
   int border = 0, known = 0;
   for (int row = 0; row < labels.rows; ++row) {
     for (int col = 0; col < labels.cols; ++col) {
-      if (labels.at<std::uint8_t>(row, col) == kHolePixel) continue;
+      if (labels.at<std::uint8_t>(row, col) == kHolePixel || near_chord(row, col)) continue;
       bool touches_hole = false;
       for (int dr = -1; dr <= 1 && !touches_hole; ++dr) {
         for (int dc = -1; dc <= 1 && !touches_hole; ++dc) {

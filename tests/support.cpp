@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <map>
 
 #include <gtest/gtest.h>
@@ -98,6 +99,106 @@ Mesh make_sphere(int frequency) {
         if (i + j + 1 < n) triangles.push_back({at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
       }
     }
+  }
+  return make_mesh(positions, triangles);
+}
+
+Mesh make_revolution(const std::vector<Eigen::Vector2d>& profile, int segments) {
+  std::vector<Vec3> positions;
+  std::vector<Triangle> triangles;
+  const int last = static_cast<int>(profile.size()) - 1;
+  // Ring i holds `segments` vertices, a pole one; vertex(i, k) wraps round in k.
+  std::vector<int> first(profile.size());
+  for (int i = 0; i <= last; ++i) {
+    first[i] = static_cast<int>(positions.size());
+    const int count = i == 0 || i == last ? 1 : segments;
+    for (int k = 0; k < count; ++k) {
+      const double angle = 2 * M_PI * k / segments;
+      positions.emplace_back(profile[i].x() * std::cos(angle), profile[i].x() * std::sin(angle),
+                             profile[i].y());
+    }
+  }
+  auto vertex = [&](int i, int k) {
+    return i == 0 || i == last ? first[i] : first[i] + k % segments;
+  };
+  for (int i = 0; i < last; ++i) {
+    for (int k = 0; k < segments; ++k) {
+      // The quad a b (ring i) c d (ring i + 1): (b - a) × (c - a) points outwards.
+      const int a = vertex(i, k), b = vertex(i, k + 1), c = vertex(i + 1, k),
+                d = vertex(i + 1, k + 1);
+      if (i > 0) triangles.push_back({a, b, c});
+      if (i + 1 < last) triangles.push_back({b, d, c});
+    }
+  }
+  return make_mesh(positions, triangles);
+}
+
+namespace {
+
+// The (radius, z) profile of make_capsule, pole to pole.
+std::vector<Eigen::Vector2d> capsule_profile(double radius, double half_length, double step) {
+  std::vector<Eigen::Vector2d> profile;
+  const int arc = std::max(2, static_cast<int>(std::lround(M_PI / 2 * radius / step)));
+  const int straight = std::max(1, static_cast<int>(std::lround(2 * half_length / step)));
+  for (int k = 0; k <= arc; ++k) {  // bottom hemisphere, from the pole
+    const double angle = M_PI / 2 * k / arc;
+    profile.emplace_back(radius * std::sin(angle), -half_length - radius * std::cos(angle));
+  }
+  for (int k = 1; k < straight; ++k) {
+    profile.emplace_back(radius, -half_length + 2 * half_length * k / straight);
+  }
+  for (int k = arc; k >= 0; --k) {  // top hemisphere, to the pole
+    const double angle = M_PI / 2 * k / arc;
+    profile.emplace_back(radius * std::sin(angle), half_length + radius * std::cos(angle));
+  }
+  profile.front().x() = profile.back().x() = 0;
+  return profile;
+}
+
+}  // namespace
+
+Mesh make_capsule(double radius, double half_length, double step) {
+  return make_revolution(capsule_profile(radius, half_length, step),
+                         static_cast<int>(std::lround(2 * M_PI * radius / step)));
+}
+
+Mesh make_double_cone(double rim, double height, int steps, int segments) {
+  std::vector<Eigen::Vector2d> profile;
+  for (int k = 0; k <= steps; ++k)
+    profile.emplace_back(rim * k / steps, -height * (steps - k) / steps);
+  for (int k = steps - 1; k >= 0; --k)
+    profile.emplace_back(rim * k / steps, height * (steps - k) / steps);
+  return make_revolution(profile, segments);
+}
+
+double azimuth_degrees(const Vec3& p) {
+  const double angle = std::atan2(p.y(), p.x()) * 180 / M_PI;
+  return angle < 0 ? angle + 360 : angle;
+}
+
+Mesh make_box(int n) {
+  const Mesh grid = make_grid(n);
+  // Grid (u, v) onto each side; each map turns the grid's +z into the side's outward normal.
+  const std::vector<std::function<Vec3(double, double)>> sides = {[](double u, double v) { return Vec3(u, v, 1); },
+                                                                  [](double u, double v) { return Vec3(v, u, 0); },
+                                                                  [](double u, double v) { return Vec3(1, u, v); },
+                                                                  [](double u, double v) { return Vec3(0, v, u); },
+                                                                  [](double u, double v) { return Vec3(v, 1, u); },
+                                                                  [](double u, double v) { return Vec3(u, 0, v); }};
+  std::vector<Vec3> positions;
+  std::map<std::array<long long, 3>, int> index_of;  // vertices shared along the edges
+  std::vector<Triangle> triangles;
+  for (const auto& side : sides) {
+    std::vector<int> id;
+    for (const Vec3& p : grid.positions) {
+      const Vec3 q = side(p.x() / n, p.y() / n);
+      const std::array<long long, 3> key = {std::llround(q.x() * n), std::llround(q.y() * n),
+                                            std::llround(q.z() * n)};
+      const auto [entry, inserted] = index_of.try_emplace(key, static_cast<int>(positions.size()));
+      if (inserted) positions.push_back(q);
+      id.push_back(entry->second);
+    }
+    for (const Triangle& t : grid.triangles) triangles.push_back({id[t[0]], id[t[1]], id[t[2]]});
   }
   return make_mesh(positions, triangles);
 }

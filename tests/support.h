@@ -33,6 +33,26 @@ Mesh make_grid(int n);
 /// the sphere (edge length about 1.05 / frequency), outward-facing.
 Mesh make_sphere(int frequency);
 
+/// A closed surface of revolution about the z axis, outward-facing: `profile` lists (radius, z)
+/// from the bottom pole (radius 0) to the top pole (radius 0); each point between them becomes a
+/// ring of `segments` vertices, the poles single vertices.
+Mesh make_revolution(const std::vector<Eigen::Vector2d>& profile, int segments);
+
+/// A capsule along z: a cylinder of `radius` from z = −half_length to half_length closed by
+/// hemispheres, with edges of about `step` (rings `step` apart along the profile).
+Mesh make_capsule(double radius, double half_length, double step);
+
+/// A spinning top: two cones of base radius `rim` and height `height` glued base to base along a
+/// circular crease at z = 0, `steps` rings on each cone and `segments` vertices round.
+Mesh make_double_cone(double rim, double height, int steps, int segments);
+
+/// The angle of p about the z axis, in degrees in [0, 360).
+double azimuth_degrees(const Vec3& p);
+
+/// The unit cube [0,1]³ with every side an n×n grid of make_grid, welded along the sharp edges,
+/// outward-facing.
+Mesh make_box(int n);
+
 /// Removes the faces whose three vertices satisfy `inside`, keeping every vertex (unreferenced ones
 /// included, so that vertex indices stay those of `mesh`).
 template <typename Predicate>

@@ -112,10 +112,11 @@ Mesh capped_tube(double r, double length, int around, int along) {
 }
 
 // A band cut three quarters of the way round a thin tube (|z| < 0.15 and x > −0.15 on a tube of
-// radius 0.2) leaves one loop that no plane sees from the front with a simple boundary: the planes
-// alone leave it open (a complex hole). With the default fallbacks it is closed, not on a plane,
-// into a closed manifold without self-intersections whose new vertices lie on the tube (0.07 d_m
-// measured; the tube's facets themselves sag 0.03 d_m from the cylinder).
+// radius 0.2) leaves one loop that no plane sees from the front with a simple boundary (a complex
+// hole: the planes alone fill it only in parts, Section VI-C). With the default fallbacks it is
+// closed by the front, not on a plane, into a closed manifold without self-intersections whose new
+// vertices lie on the tube (0.07 d_m measured; the tube's facets themselves sag 0.03 d_m from the
+// cylinder).
 TEST(FrontFiller, ClosesAHoleWrappedRoundATube) {
   const Mesh tube = capped_tube(0.2, 2, 24, 40);
   ASSERT_TRUE(check_manifold(tube).closed_manifold());
@@ -128,12 +129,9 @@ TEST(FrontFiller, ClosesAHoleWrappedRoundATube) {
   RepairOptions planes_only;
   planes_only.fallback_front = false;
   planes_only.fallback_least_area = false;
-  const RepairResult refused = repair(cut, planes_only);
-  ASSERT_EQ(refused.holes.size(), 1u);
-  EXPECT_FALSE(refused.holes[0].filled);
-  EXPECT_NE(refused.holes[0].failure.find("complex hole"), std::string::npos)
-      << refused.holes[0].failure;
-  EXPECT_EQ(refused.holes_left, 1);
+  const RepairResult parts = repair(cut, planes_only);
+  ASSERT_FALSE(parts.holes.empty());
+  EXPECT_EQ(parts.holes[0].method, "plane, in part");
 
   const RepairResult result = repair(cut);
   ASSERT_FALSE(result.holes.empty());

@@ -30,6 +30,14 @@ inline bool segments_touch(const Vec2& a, const Vec2& b, const Vec2& c, const Ve
          (o3 == 0 && within_box(c, d, a)) || (o4 == 0 && within_box(c, d, b));
 }
 
+/// Distance from p to the closed segment ab.
+inline double distance_to_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double t =
+      ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (a + t * ab - p).norm();
+}
+
 /// Signed area of a closed polygon (shoelace), positive when counter-clockwise.
 inline double polygon_area(const std::vector<Vec2>& polygon) {
   double twice = 0;

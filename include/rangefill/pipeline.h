@@ -122,8 +122,9 @@ struct SurfaceContext {
 };
 
 /// Fills one hole. With Filler::plane: Sections V–VIII on the best acceptable plane, else the next
-/// ones; then, if allowed, the advancing front; then a part of the hole on its own planes (VI-C,
-/// the rest is left to the next pass); then, if allowed, a least-area patch of the loop. Reads
+/// ones; then, if allowed, the advancing front; then a part of the hole (VI-C, complex_hole.h) with
+/// a zone and planes of its own, the rest left to the next pass; then, if allowed, a least-area
+/// patch of the loop. Reads
 /// `surface` only; safe to call concurrently. `report` receives the figures of the stages it
 /// reached. Throws ProcessingError with the reasons when no filler succeeds (a fill is refused when
 /// it would not be manifold or would intersect the surface or itself).

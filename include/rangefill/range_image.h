@@ -3,8 +3,12 @@
 // (Section VI-B, eq. 9–10).
 #pragma once
 
+#include <array>
+#include <vector>
+
 #include <opencv2/core.hpp>
 
+#include "rangefill/geometry2d.h"
 #include "rangefill/holes.h"
 #include "rangefill/mesh.h"
 #include "rangefill/projection.h"
@@ -55,7 +59,10 @@ RangeImage rasterize_zone(const Mesh& mesh, const Zone& zone, const BoundaryLoop
 
 /// Share of the pixels bordering the hole mask (its 8-neighbours outside it) that hold depth from
 /// the zone: how much of the hole's surroundings the image actually sees. 1 for an empty mask.
-double rim_support(const RangeImage& image);
+/// Pixels whose centres lie within 1.5 pixels of one of the `chords` (segments in the frame's
+/// x, y) are not counted: a chord closing a part of a complex hole (Section VI-C) has the rest of
+/// the hole beyond it, never surface.
+double rim_support(const RangeImage& image, const std::vector<std::array<Vec2, 2>>& chords = {});
 
 struct GapFillStats {
   int areas = 0;           // gap areas filled
