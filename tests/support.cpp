@@ -103,6 +103,18 @@ Mesh make_sphere(int frequency) {
   return make_mesh(positions, triangles);
 }
 
+Mesh make_sphere_cloud(int n, double cut) {
+  const double golden_angle = M_PI * (3 - std::sqrt(5.0));
+  Mesh cloud;
+  for (int i = 0; i < n; ++i) {
+    const double z = 1 - (i + 0.5) * 2.0 / n, r = std::sqrt(1 - z * z);
+    if (z > cut) continue;
+    add_vertex(cloud, Vec3(r * std::cos(golden_angle * i), r * std::sin(golden_angle * i), z),
+               kOriginal);
+  }
+  return cloud;
+}
+
 Mesh make_revolution(const std::vector<Eigen::Vector2d>& profile, int segments) {
   std::vector<Vec3> positions;
   std::vector<Triangle> triangles;
@@ -203,6 +215,14 @@ Mesh make_box(int n) {
   return make_mesh(positions, triangles);
 }
 
+BoundaryLoop inner_loop(const Mesh& mesh) {
+  BoundaryLoop hole;
+  for (const BoundaryLoop& loop : find_holes(mesh, build_topology(mesh)).loops) {
+    if (!loop.longest_in_component) hole = loop;
+  }
+  return hole;
+}
+
 void expect_bit_identical(const std::vector<Vec3>& actual, const std::vector<Vec3>& expected) {
   ASSERT_EQ(actual.size(), expected.size());
   for (size_t i = 0; i < actual.size(); ++i) {
@@ -232,9 +252,7 @@ TiltedSheet make_tilted_sheet(int n, const Eigen::Matrix3d& rotation, const Vec3
   sheet.mesh = remove_faces(grid, [&](const Vec3& p) {
     return (rotation.transpose() * (p - shift) - centre).norm() < radius;
   });
-  for (const BoundaryLoop& loop : find_holes(sheet.mesh, build_topology(sheet.mesh)).loops) {
-    if (!loop.longest_in_component) sheet.hole = loop;
-  }
+  sheet.hole = inner_loop(sheet.mesh);
   for (int f = 0; f < sheet.mesh.face_count(); ++f) sheet.zone.faces.push_back(f);
   for (int v = 0; v < sheet.mesh.vertex_count(); ++v) sheet.zone.vertices.push_back(v);
   const auto [lo, hi] = bounding_box(sheet.mesh);

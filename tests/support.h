@@ -33,6 +33,10 @@ Mesh make_grid(int n);
 /// the sphere (edge length about 1.05 / frequency), outward-facing.
 Mesh make_sphere(int frequency);
 
+/// `n` points spread evenly over the unit sphere (the Fibonacci lattice) below z = `cut`, as a
+/// mesh without faces: a point cloud sampled from a closed surface, with a cap cut out.
+Mesh make_sphere_cloud(int n, double cut);
+
 /// A closed surface of revolution about the z axis, outward-facing: `profile` lists (radius, z)
 /// from the bottom pole (radius 0) to the top pole (radius 0); each point between them becomes a
 /// ring of `segments` vertices, the poles single vertices.
@@ -66,6 +70,9 @@ Mesh remove_faces(const Mesh& mesh, Predicate inside) {
   }
   return make_mesh(mesh.positions, kept);
 }
+
+/// The last loop of `mesh` that is not the longest of its component: the hole of a sheet with one.
+BoundaryLoop inner_loop(const Mesh& mesh);
 
 /// EXPECTs that the two lists hold the same doubles, bit for bit (which == would not tell of -0).
 void expect_bit_identical(const std::vector<Vec3>& actual, const std::vector<Vec3>& expected);

@@ -138,10 +138,7 @@ TEST(SplitComplexHole, LongThinHoleIsCutAcrossItsMiddle) {
     return p.x() >= 3 && p.x() <= 27 && p.y() >= 14 && p.y() <= 16;
   });
   const MeshTopology topology = build_topology(sheet);
-  BoundaryLoop hole;
-  for (const BoundaryLoop& loop : find_holes(sheet, topology).loops) {
-    if (!loop.longest_in_component) hole = loop;
-  }
+  const BoundaryLoop hole = testing::inner_loop(sheet);
   ASSERT_EQ(hole.vertices.size(), 52u);
   const std::vector<BoundaryLoop> parts = split_complex_hole(sheet, topology, hole, Frame());
   ASSERT_GE(parts.size(), 2u);
@@ -163,10 +160,7 @@ TEST(SplitComplexHole, ChordsNeverCrossTheSurface) {
     return p.x() >= 4 && p.x() <= 16 && p.y() >= 4 && p.y() <= 16 && !peninsula(p);
   });
   const MeshTopology topology = build_topology(sheet);
-  BoundaryLoop hole;
-  for (const BoundaryLoop& loop : find_holes(sheet, topology).loops) {
-    if (!loop.longest_in_component) hole = loop;
-  }
+  const BoundaryLoop hole = testing::inner_loop(sheet);
   ASSERT_FALSE(hole.vertices.empty());
   const std::vector<BoundaryLoop> parts = split_complex_hole(sheet, topology, hole, Frame());
   ASSERT_FALSE(parts.empty());
@@ -194,10 +188,7 @@ TEST(SplitComplexHole, RimSeenFromBehindIsLeftOut) {
       p = Vec3(8 + (p.x() - 8) * std::cos(angle), p.y(), (p.x() - 8) * std::sin(angle));
   }
   const MeshTopology topology = build_topology(sheet);
-  BoundaryLoop hole;
-  for (const BoundaryLoop& loop : find_holes(sheet, topology).loops) {
-    if (!loop.longest_in_component) hole = loop;
-  }
+  const BoundaryLoop hole = testing::inner_loop(sheet);
   ASSERT_EQ(hole.vertices.size(), 24u);
   const std::vector<BoundaryLoop> parts = split_complex_hole(sheet, topology, hole, Frame());
   ASSERT_FALSE(parts.empty());
