@@ -2,8 +2,6 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "harmonic.h"
-
 namespace rangefill {
 
 FoeInpainter::FoeInpainter(FoeModel model, const FoeMapOptions& options)
@@ -13,9 +11,7 @@ void FoeInpainter::inpaint(cv::InputArray depth_in, cv::InputArray mask_in,
                            cv::OutputArray out) const {
   check_inpaint_arguments(depth_in, mask_in, name());
   const cv::Mat depth = depth_in.getMat(), mask = mask_in.getMat();
-  cv::Mat start;
-  HarmonicInpainter().inpaint(depth, mask, start);
-  start.copyTo(out);
+  depth.copyTo(out);
   if (cv::countNonZero(mask) == 0) return;
 
   const int margin = model_.size / 2 + 1;
@@ -25,9 +21,9 @@ void FoeInpainter::inpaint(cv::InputArray depth_in, cv::InputArray mask_in,
   crop.width += 2 * margin;
   crop.height += 2 * margin;
   crop &= cv::Rect(0, 0, depth.cols, depth.rows);
-  const double divisor = foe_input_divisor(model_, start(crop), mask(crop));
+  const double divisor = foe_input_divisor(model_, depth(crop), mask(crop));
   cv::Mat image;
-  start(crop).convertTo(image, CV_64F, 1.0 / divisor);
+  depth(crop).convertTo(image, CV_64F, 1.0 / divisor);
   const cv::Mat restored = foe_map(model_, image, mask(crop).clone(), options_);
   cv::Mat result = out.getMat();
   for (int row = 0; row < crop.height; ++row) {

@@ -6,7 +6,7 @@
 
 namespace rangefill {
 
-/// MAP inpainting (foe_map) from the harmonic fill, on the mask's bounding box grown by the filter
+/// MAP inpainting (foe_map) on the mask's bounding box grown by the filter
 /// footprint (the only cliques that change), inputs divided by foe_input_divisor. Known pixels are
 /// returned exactly.
 class FoeInpainter : public Inpainter {

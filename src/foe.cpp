@@ -3,11 +3,14 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
-#include <ceres/ceres.h>
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
 #include <opencv2/imgproc.hpp>
 
+#include "../filters/harmonic.h"
 #include "rangefill/errors.h"
 #include "shipped_models.h"
 
@@ -242,12 +245,25 @@ void add_correlation_adjoint(const cv::Mat& z, const cv::Mat& kernel,
   }
 }
 
-// E over the cliques of `runs` (Roth & Black's eq. for the FoE energy), ∇E into `gradient`.
+// The weights w_i of the quadratic forms Σ_c w_ic (J_i ⋆ x)_c² / 2 that inference builds, at every
+// clique: pixel-major ([pixel · count + i]), 0 off the cliques.
+struct CliqueWeights {
+  std::vector<double> half_quadratic;  // α_i / (1 + y²/2): the bound of Geman & Yang
+  std::vector<double> curvature;  // α_i ρ''(y) = α_i (1 − y²/2) / (1 + y²/2)²: the Hessian
+};
+
+// E over the cliques of `runs` (Roth & Black's eq. for the FoE energy), ∇E into `gradient` and the
+// clique weights at x into `weights`.
 double energy_over(const FoeModel& model, const cv::Mat& x, const std::vector<CliqueRun>& runs,
-                   cv::Mat* gradient) {
+                   cv::Mat* gradient, CliqueWeights* weights = nullptr) {
   if (gradient) *gradient = cv::Mat::zeros(x.size(), CV_64F);
+  const int count = model.count();
+  if (weights) {
+    weights->half_quadratic.assign(x.total() * count, 0.0);
+    weights->curvature.assign(x.total() * count, 0.0);
+  }
   double energy = 0;
-  for (int i = 0; i < model.count(); ++i) {
+  for (int i = 0; i < count; ++i) {
     const cv::Mat kernel = model.filters[i] * model.input_scale;
     cv::Mat y = correlate(x, kernel, runs);
     const double alpha = model.alphas[i];
@@ -256,7 +272,13 @@ double energy_over(const FoeModel& model, const cv::Mat& x, const std::vector<Cl
       for (int col = run.begin; col < run.end; ++col) {
         const double half_square = 0.5 * line[col] * line[col];
         energy += alpha * std::log1p(half_square);
-        line[col] = alpha * line[col] / (1 + half_square);  // ψ_i(y), the expert's influence
+        const double weight = alpha / (1 + half_square);
+        if (weights) {
+          const size_t at = (static_cast<size_t>(run.row) * x.cols + col) * count + i;
+          weights->half_quadratic[at] = weight;
+          weights->curvature[at] = weight * (1 - half_square) / (1 + half_square);
+        }
+        line[col] *= weight;  // ψ_i(y), the expert's influence
       }
     }
     if (gradient) add_correlation_adjoint(y, kernel, runs, *gradient);
@@ -296,57 +318,239 @@ double foe_energy_of_unknowns(const FoeModel& model, const cv::Mat& x, const cv:
 
 namespace {
 
-// E as a function of the unknown pixels (the rest fixed), for Ceres.
-class EnergyOfUnknowns : public ceres::FirstOrderFunction {
- public:
-  EnergyOfUnknowns(const FoeModel& model, cv::Mat image, const cv::Mat& mask,
-                   std::vector<cv::Point> unknowns)
-      : model_(model), image_(std::move(image)), mask_(mask), unknowns_(std::move(unknowns)) {}
+// The unknown pixels of `mask` in row-major order, and each one's number (−1 elsewhere).
+struct Unknowns {
+  explicit Unknowns(const cv::Mat& mask) : index(mask.size(), CV_32S, cv::Scalar(-1)) {
+    cv::findNonZero(mask, pixels);
+    for (size_t k = 0; k < pixels.size(); ++k) index.at<int>(pixels[k]) = static_cast<int>(k);
+  }
+  int at(cv::Point p) const {
+    return p.x < 0 || p.y < 0 || p.x >= index.cols || p.y >= index.rows ? -1 : index.at<int>(p);
+  }
+  std::vector<cv::Point> pixels;
+  cv::Mat index;  // CV_32S
+};
 
-  bool Evaluate(const double* parameters, double* cost, double* gradient) const override {
-    for (size_t k = 0; k < unknowns_.size(); ++k) image_.at<double>(unknowns_[k]) = parameters[k];
-    cv::Mat full_gradient;
-    *cost = foe_energy_of_unknowns(model_, image_, mask_, gradient ? &full_gradient : nullptr);
-    if (gradient) {
-      for (size_t k = 0; k < unknowns_.size(); ++k) {
-        gradient[k] = full_gradient.at<double>(unknowns_[k]);
+// The matrices of quadratic upper bounds of E over the unknowns: A = Σ_i Σ_c w_ic J_ic J_icᵀ. As
+// ρ(y) = log(1 + y²/2) has ρ'' ≤ 1, w = α_i bounds E around every point (A is then the Hessian of
+// the Gaussian field with the same filters); as ρ is concave in y², the half-quadratic weights
+// w = α_i / (1 + y²/2) at the current responses bound it more tightly around the current point
+// (Geman & Yang). Either way x − A⁻¹∇E lowers E. Entries A(p, p + d) = Σ_i Σ_t w_i(p − t) K_i(t)
+// K_i(t + d), with K_i the scaled kernels, over the (4r + 1)² offsets d of the stencil.
+class BoundMatrix {
+ public:
+  BoundMatrix(const FoeModel& model, const Unknowns& unknowns) : unknowns_(unknowns) {
+    const int r = model.size / 2, count = model.count();
+    count_ = count;
+    // For each stencil offset d, the taps t with t + d in the kernel and the products
+    // K_i(t) K_i(t + d) of every filter.
+    for (int dy = -2 * r; dy <= 2 * r; ++dy) {
+      for (int dx = -2 * r; dx <= 2 * r; ++dx) {
+        Offset offset;
+        for (int ty = std::max(-r, -r - dy); ty <= std::min(r, r - dy); ++ty) {
+          for (int tx = std::max(-r, -r - dx); tx <= std::min(r, r - dx); ++tx) {
+            offset.taps.emplace_back(tx, ty);
+            for (int i = 0; i < count; ++i) {
+              const double scale = model.input_scale * model.input_scale;
+              offset.products.push_back(scale * model.filters[i].at<double>(ty + r, tx + r) *
+                                        model.filters[i].at<double>(ty + dy + r, tx + dx + r));
+            }
+          }
+        }
+        offsets_.push_back(std::move(offset));
       }
     }
-    return std::isfinite(*cost);
+    const int n = static_cast<int>(unknowns.pixels.size()), side = 4 * r + 1;
+    std::vector<Eigen::Triplet<double>> pattern;
+    for (int column = 0; column < n; ++column) {
+      for (int d = 0; d < side * side; ++d) {
+        const cv::Point p = unknowns.pixels[column] + cv::Point(d % side - 2 * r, d / side - 2 * r);
+        const int row = unknowns.at(p);
+        if (row >= 0) {
+          pattern.emplace_back(row, column, 1.0);
+          entry_offsets_.push_back(d);
+        }
+      }
+    }
+    matrix_.resize(n, n);
+    matrix_.setFromTriplets(pattern.begin(), pattern.end());  // keeps the column-major order
+    matrix_.makeCompressed();
   }
-  int NumParameters() const override { return static_cast<int>(unknowns_.size()); }
+
+  // A for clique weights (pixel-major, as in CliqueWeights), with `ridge` added to the diagonal.
+  const Eigen::SparseMatrix<double>& assemble(const std::vector<double>& weights, double ridge) {
+    const int cols = unknowns_.index.cols;
+    double* values = matrix_.valuePtr();
+    const int* starts = matrix_.outerIndexPtr();
+    for (int column = 0; column < matrix_.outerSize(); ++column) {
+      const cv::Point p = unknowns_.pixels[column];
+      for (int k = starts[column]; k < starts[column + 1]; ++k) {
+        const Offset& offset = offsets_[entry_offsets_[k]];
+        double sum = matrix_.innerIndexPtr()[k] == column ? ridge : 0;
+        const double* product = offset.products.data();
+        for (const cv::Point& t : offset.taps) {
+          const double* w = &weights[((p.y - t.y) * cols + p.x - t.x) * count_];
+          for (int i = 0; i < count_; ++i) sum += w[i] * product[i];
+          product += count_;
+        }
+        values[k] = sum;
+      }
+    }
+    return matrix_;
+  }
 
  private:
-  const FoeModel& model_;
-  mutable cv::Mat image_;  // Evaluate writes the unknowns into it
-  const cv::Mat& mask_;
-  std::vector<cv::Point> unknowns_;
+  struct Offset {
+    std::vector<cv::Point> taps;
+    std::vector<double> products;  // [tap · count + filter]
+  };
+  const Unknowns& unknowns_;
+  int count_ = 0;
+  std::vector<Offset> offsets_;
+  std::vector<int> entry_offsets_;  // the stencil offset of each stored entry
+  Eigen::SparseMatrix<double> matrix_;
 };
+
+// E, ∇E over the unknowns and the clique weights at a point.
+struct Evaluation {
+  double energy = 0;
+  Eigen::VectorXd gradient;
+  CliqueWeights weights;
+};
+
+Evaluation evaluate(const FoeModel& model, const cv::Mat& x, const std::vector<CliqueRun>& runs,
+                    const Unknowns& unknowns) {
+  Evaluation evaluation;
+  cv::Mat gradient;
+  evaluation.energy = energy_over(model, x, runs, &gradient, &evaluation.weights);
+  evaluation.gradient.resize(unknowns.pixels.size());
+  for (size_t k = 0; k < unknowns.pixels.size(); ++k) {
+    evaluation.gradient[k] = gradient.at<double>(unknowns.pixels[k]);
+  }
+  return evaluation;
+}
 
 }  // namespace
 
-cv::Mat foe_map(const FoeModel& model, const cv::Mat& start, const cv::Mat& mask,
-                const FoeMapOptions& options) {
-  check_energy_argument(start);
-  CV_Assert(mask.type() == CV_8UC1 && mask.size() == start.size());
-  std::vector<cv::Point> unknowns;
-  cv::findNonZero(mask, unknowns);  // row by row
-  cv::Mat result = start.clone();
-  if (unknowns.empty()) return result;
-  std::vector<double> parameters;
-  for (const cv::Point& p : unknowns) parameters.push_back(start.at<double>(p));
+namespace {
 
-  ceres::GradientProblemSolver::Options solver;
-  solver.line_search_direction_type = ceres::LBFGS;
-  solver.max_num_iterations = options.max_iterations;
-  solver.function_tolerance = options.function_tolerance;
-  solver.gradient_tolerance = options.gradient_tolerance;
-  solver.logging_type = ceres::SILENT;
-  ceres::GradientProblemSolver::Summary summary;
-  ceres::GradientProblem problem(new EnergyOfUnknowns(model, start.clone(), mask, unknowns));
-  ceres::Solve(solver, problem, parameters.data(), &summary);
-  for (size_t k = 0; k < unknowns.size(); ++k) result.at<double>(unknowns[k]) = parameters[k];
-  return result;
+// What foe_map and foe_hessian_of_unknowns share: the unknowns, the cliques that see them, and
+// the matrices of quadratic forms over them.
+struct InferenceProblem {
+  InferenceProblem(const FoeModel& model, const cv::Mat& mask)
+      : unknowns(mask), runs(cliques_touching(mask, model.size / 2)), matrices(model, unknowns) {}
+  Unknowns unknowns;
+  std::vector<CliqueRun> runs;
+  BoundMatrix matrices;
+};
+
+// Keeps A definite where the filters cannot see an unknown (a mask covering the image).
+double ridge_of(const FoeModel& model) {
+  double ridge = 0;
+  for (double alpha : model.alphas) ridge += 1e-12 * alpha * model.input_scale * model.input_scale;
+  return ridge;
+}
+
+}  // namespace
+
+cv::Mat foe_map(const FoeModel& model, const cv::Mat& image, const cv::Mat& mask,
+                const FoeMapOptions& options) {
+  check_energy_argument(image);
+  CV_Assert(mask.type() == CV_8UC1 && mask.size() == image.size());
+  cv::Mat x = image.clone();
+  if (cv::countNonZero(mask) == 0) return x;
+  x.setTo(0, mask);
+  InferenceProblem problem(model, mask);
+  const std::vector<cv::Point>& unknowns = problem.unknowns.pixels;
+  const int count = model.count();
+  const double ridge = ridge_of(model);
+  std::vector<double> gaussian(x.total() * count, 0.0);
+  for (const CliqueRun& run : problem.runs) {
+    for (int col = run.begin; col < run.end; ++col) {
+      std::copy(model.alphas.begin(), model.alphas.end(),
+                gaussian.begin() + (static_cast<size_t>(run.row) * x.cols + col) * count);
+    }
+  }
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
+  solver.compute(problem.matrices.assemble(gaussian, ridge));
+  auto step_from = [&](const cv::Mat& from, const Eigen::VectorXd& gradient) {
+    const Eigen::VectorXd step = solver.solve(gradient);
+    cv::Mat to = from.clone();
+    for (size_t k = 0; k < unknowns.size(); ++k) to.at<double>(unknowns[k]) -= step[k];
+    return to;
+  };
+  // The start: the harmonic fill. Its maximum principle keeps it within the known values around
+  // each hole, so E is entered without the overshoot of higher-order fills at depth edges.
+  {
+    cv::Mat image32, start32;
+    x.convertTo(image32, CV_32F);
+    HarmonicInpainter().inpaint(image32, mask, start32);
+    for (const cv::Point& p : unknowns) x.at<double>(p) = start32.at<float>(p);
+  }
+  // Then steps x ← x − M⁻¹∇E, each factorisation reused while its steps gain at least twice what
+  // the next one does. M starts as the Gaussian bound (ρ'' ≤ 1: it holds everywhere). When
+  // progress slows, M becomes the Hessian at the current point if it is positive definite (Newton:
+  // quadratic convergence near the minimum), else the half-quadratic bound there (Geman & Yang).
+  // A step that would raise E is retried with a matrix made at x, the half-quadratic bound last,
+  // which cannot raise E; only a matrix made at x may end the iterations by gaining too little.
+  enum class Matrix { bound, other } kind = Matrix::bound;
+  bool fresh = false;  // M was made at x
+  Evaluation current = evaluate(model, x, problem.runs, problem.unknowns);
+  auto refresh_with_bound = [&] {
+    solver.factorize(problem.matrices.assemble(current.weights.half_quadratic, ridge));
+    kind = Matrix::bound;
+    fresh = true;
+  };
+  auto refresh = [&] {
+    solver.factorize(problem.matrices.assemble(current.weights.curvature, ridge));
+    if (solver.info() == Eigen::Success && solver.vectorD().minCoeff() > 0) {
+      kind = Matrix::other;
+      fresh = true;
+    } else {
+      refresh_with_bound();
+    }
+  };
+  double last_gain = std::numeric_limits<double>::infinity();
+  for (int iteration = 0; iteration < options.max_iterations; ++iteration) {
+    if (solver.info() != Eigen::Success ||
+        current.gradient.lpNorm<Eigen::Infinity>() <= options.gradient_tolerance) {
+      break;
+    }
+    const cv::Mat trial = step_from(x, current.gradient);
+    Evaluation next = evaluate(model, trial, problem.runs, problem.unknowns);
+    const double gain = current.energy - next.energy;
+    // At the minimum E changes by rounding only; a step that shrinks ∇E is then taken.
+    const bool flat =
+        gain >= -64 * std::numeric_limits<double>::epsilon() * std::abs(current.energy) &&
+        next.gradient.lpNorm<Eigen::Infinity>() < current.gradient.lpNorm<Eigen::Infinity>();
+    if (!(gain >= 0) && !flat) {  // a stale matrix or a Newton step too long
+      if (fresh && kind == Matrix::bound) break;
+      if (fresh) {
+        refresh_with_bound();
+      } else {
+        refresh();
+      }
+      continue;
+    }
+    x = trial;
+    current = std::move(next);
+    const bool small = gain <= options.function_tolerance * std::abs(current.energy);
+    if (small && fresh) break;
+    if (kind == Matrix::bound && fresh) kind = Matrix::other;  // not a bound at the new x
+    fresh = false;
+    if (small || gain > 0.5 * last_gain) refresh();
+    last_gain = gain;
+  }
+  return x;
+}
+
+Eigen::SparseMatrix<double> foe_hessian_of_unknowns(const FoeModel& model, const cv::Mat& x,
+                                                    const cv::Mat& mask) {
+  check_energy_argument(x);
+  CV_Assert(mask.type() == CV_8UC1 && mask.size() == x.size());
+  InferenceProblem problem(model, mask);
+  const Evaluation at_x = evaluate(model, x, problem.runs, problem.unknowns);
+  return problem.matrices.assemble(at_x.weights.curvature, 0);
 }
 
 }  // namespace rangefill

@@ -6,10 +6,9 @@
 #include <thread>
 
 #include <ceres/ceres.h>
-#include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
 #include <opencv2/imgproc.hpp>
 
-#include "../filters/harmonic.h"
 #include "rangefill/errors.h"
 
 namespace rangefill {
@@ -59,85 +58,20 @@ double shifted_dot(const cv::Mat& a, const cv::Mat& b, const cv::Rect& valid, cv
 }
 
 // The MAP estimate the objective scores: tight tolerances, as the implicit gradient assumes
-// ∇_u E = 0 there.
-constexpr FoeMapOptions kTrainingMap{1000, 1e-14, 1e-11};
-
-// H = ∂²E/∂u² over the unknowns u (numbered row by row in `index`, −1 elsewhere):
-// Σ_i α_i Σ_c ρ''(y_c) J_c J_cᵀ with ρ(y) = log(1 + y²/2), J_c the filter placed at clique c.
-Eigen::MatrixXd hessian_of_unknowns(const FoeModel& model, const cv::Mat& x, const cv::Mat& index,
-                                    int unknowns) {
-  Eigen::MatrixXd hessian = Eigen::MatrixXd::Zero(unknowns, unknowns);
-  const int size = model.size, r = size / 2;
-  std::vector<std::pair<int, double>> taps;  // (unknown, filter tap) under the clique
-  for (int i = 0; i < model.count(); ++i) {
-    const cv::Mat& kernel = model.filters[i];
-    const cv::Mat y = foe_response(x, kernel);
-    for (int row = r; row < x.rows - r; ++row) {
-      for (int col = r; col < x.cols - r; ++col) {
-        taps.clear();
-        for (int k = 0; k < size * size; ++k) {
-          const int unknown = index.at<int>(row + k / size - r, col + k % size - r);
-          if (unknown >= 0) taps.push_back({unknown, kernel.at<double>(k / size, k % size)});
-        }
-        if (taps.empty()) continue;
-        const double half = 0.5 * y.at<double>(row, col) * y.at<double>(row, col);
-        const double curvature = model.alphas[i] * (1 - half) / ((1 + half) * (1 + half));
-        for (const auto& [a, ja] : taps) {
-          for (const auto& [b, jb] : taps) hessian(a, b) += curvature * ja * jb;
-        }
-      }
-    }
-  }
-  return hessian;
-}
-
-// ∇_u E at x, over the unknowns.
-Eigen::VectorXd gradient_of_unknowns(const FoeModel& model, const cv::Mat& x, const cv::Mat& mask,
-                                     const std::vector<cv::Point>& unknowns) {
-  cv::Mat full;
-  foe_energy_of_unknowns(model, x, mask, &full);
-  Eigen::VectorXd gradient(unknowns.size());
-  for (size_t k = 0; k < unknowns.size(); ++k) gradient[k] = full.at<double>(unknowns[k]);
-  return gradient;
-}
-
-// foe_map, then Newton steps while they shrink ∇_u E (L-BFGS leaves it near 1e-9; the implicit
-// gradient assumes 0). `hessian` receives the factorised Hessian at the result.
-cv::Mat polished_map(const FoeModel& model, const cv::Mat& start, const cv::Mat& mask,
-                     const std::vector<cv::Point>& unknowns, const cv::Mat& index,
-                     Eigen::LDLT<Eigen::MatrixXd>& hessian) {
-  const int n = static_cast<int>(unknowns.size());
-  cv::Mat x = foe_map(model, start, mask, kTrainingMap);
-  hessian.compute(hessian_of_unknowns(model, x, index, n));
-  Eigen::VectorXd gradient = gradient_of_unknowns(model, x, mask, unknowns);
-  for (int newton = 0; newton < 3 && n > 0; ++newton) {
-    const Eigen::VectorXd step = hessian.solve(gradient);
-    cv::Mat trial = x.clone();
-    for (int k = 0; k < n; ++k) trial.at<double>(unknowns[k]) -= step[k];
-    const Eigen::VectorXd trial_gradient = gradient_of_unknowns(model, trial, mask, unknowns);
-    if (!(trial_gradient.norm() < gradient.norm())) break;
-    x = trial;
-    gradient = trial_gradient;
-    hessian.compute(hessian_of_unknowns(model, x, index, n));
-  }
-  return x;
-}
+// ∇_u E = 0 there (foe_map ends with Newton steps, which get there).
+constexpr FoeMapOptions kTrainingMap{1000, 1e-15, 1e-12};
 
 // The loss of one sample and, when `gradient` is given, its derivatives with respect to the taps
 // (count × size², row-major) and α (count), added to `gradient`. At the MAP x*, ∇_u E(x*, θ) = 0,
 // so dx*/dθ = −H⁻¹ ∂(∇_u E)/∂θ and dL/dθ = −λᵀ ∂(∇_u E)/∂θ with H λ = ∂L/∂u (Samuel & Tappen,
 // "Learning optimized MAP estimates in continuously-valued MRF models", 2009).
-double sample_loss(const FoeModel& model, const HoleSample& sample, const cv::Mat& start,
-                   std::vector<double>* gradient) {
+double sample_loss(const FoeModel& model, const HoleSample& sample, std::vector<double>* gradient) {
   const int size = model.size, r = size / 2, count = model.count();
-  const cv::Rect valid(r, r, start.cols - 2 * r, start.rows - 2 * r);
+  const cv::Rect valid(r, r, sample.truth.cols - 2 * r, sample.truth.rows - 2 * r);
   std::vector<cv::Point> unknowns;
   cv::findNonZero(sample.mask, unknowns);
   const int n = static_cast<int>(unknowns.size());
-  cv::Mat index(start.size(), CV_32S, cv::Scalar(-1));
-  for (int k = 0; k < n; ++k) index.at<int>(unknowns[k]) = k;
-  Eigen::LDLT<Eigen::MatrixXd> hessian;
-  const cv::Mat x = polished_map(model, start, sample.mask, unknowns, index, hessian);
+  const cv::Mat x = foe_map(model, sample.truth, sample.mask, kTrainingMap);
   const double masked = std::max(1, n);
   double loss = 0;
   Eigen::VectorXd loss_gradient(n);
@@ -148,6 +82,8 @@ double sample_loss(const FoeModel& model, const HoleSample& sample, const cv::Ma
   }
   if (!gradient || n == 0) return loss;
 
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> hessian(
+      foe_hessian_of_unknowns(model, x, sample.mask));
   const Eigen::VectorXd lambda = hessian.solve(loss_gradient);
   cv::Mat v = cv::Mat::zeros(x.size(), CV_64F);
   for (int k = 0; k < n; ++k) v.at<double>(unknowns[k]) = lambda[k];
@@ -202,11 +138,6 @@ FoeObjective::FoeObjective(std::vector<HoleSample> samples, int size, int count,
     sample.truth.convertTo(truth, CV_64F,
                            1.0 / foe_input_divisor(normalising, sample.truth, sample.mask));
     sample.truth = truth;
-    cv::Mat truth32, start32, start;
-    sample.truth.convertTo(truth32, CV_32F);
-    HarmonicInpainter().inpaint(truth32, sample.mask, start32);
-    start32.convertTo(start, CV_64F);
-    starts_.push_back(start);
   }
   // θ holds the filters' coefficients in units of `coefficient_scale_`, chosen so that the
   // lowest-frequency DCT filter's responses on the samples have unit spread: then the experts'
@@ -263,7 +194,7 @@ double FoeObjective::evaluate(const std::vector<double>& theta,
   for (int t = 0; t < threads_; ++t) {
     workers.emplace_back([&, t] {
       for (size_t s = t; s < samples_.size(); s += threads_) {
-        losses[s] = sample_loss(foe, samples_[s], starts_[s], gradient ? &raws[s] : nullptr);
+        losses[s] = sample_loss(foe, samples_[s], gradient ? &raws[s] : nullptr);
       }
     });
   }

@@ -62,8 +62,8 @@ Zone faces_around(const Mesh& mesh, const MeshTopology& topology, int centre, do
 
 }  // namespace
 
-std::vector<cv::Mat> depth_patches(const Mesh& mesh, const PatchOptions& options) {
-  std::vector<cv::Mat> patches;
+std::vector<DepthPatch> depth_patches(const Mesh& mesh, const PatchOptions& options) {
+  std::vector<DepthPatch> patches;
   if (mesh.vertex_count() == 0) return patches;
   const MeshTopology topology = build_topology(mesh);
   const double mean_edge = mean_edge_length(mesh, topology);
@@ -93,8 +93,9 @@ std::vector<cv::Mat> depth_patches(const Mesh& mesh, const PatchOptions& options
     const int row = static_cast<int>(std::lround(image.y_max / image.step)) - options.size / 2;
     const cv::Rect crop(col, row, options.size, options.size);
     if ((crop & cv::Rect(0, 0, image.depth.cols, image.depth.rows)) != crop) continue;
-    if (cv::countNonZero(image.labels(crop) != kKnownPixel) > 0) continue;
-    patches.push_back(image.depth(crop).clone());
+    const cv::Mat seen = image.labels(crop) == kKnownPixel;
+    if (seen.total() - cv::countNonZero(seen) > options.max_unseen * seen.total()) continue;
+    patches.push_back({image.depth(crop).clone(), seen, 1 / (image.depth_scale * mean_edge)});
   }
   return patches;
 }
@@ -133,16 +134,17 @@ cv::Mat blob_mask(cv::Size size, double min_fraction, double max_fraction, int m
   return mask;
 }
 
-HoleSample make_hole_sample(const cv::Mat& patch, const cv::Mat& mask, TrendKind trend,
+HoleSample make_hole_sample(const DepthPatch& patch, const cv::Mat& mask, TrendKind trend,
                             double ring) {
-  RangeImage image;
-  image.depth = patch;
-  image.labels = cv::Mat(patch.size(), CV_8U, cv::Scalar(kKnownPixel));
-  image.labels.setTo(kHolePixel, mask);
+  cv::Mat labels(patch.depth.size(), CV_8U, cv::Scalar(kOutsidePixel));
+  labels.setTo(kKnownPixel, patch.seen);
+  labels.setTo(kHolePixel, mask);
   HoleSample sample;
-  cv::Mat residual = patch - fit_trend(image, trend, ring).image(patch.size());
+  cv::Mat residual =
+      patch.depth - fit_trend(patch.depth, labels, trend, ring).image(patch.depth.size());
   residual.convertTo(sample.truth, CV_64F);
   sample.mask = mask.clone();
+  sample.mean_edges_per_unit = patch.mean_edges_per_unit;
   return sample;
 }
 
@@ -151,13 +153,32 @@ std::vector<HoleSample> hole_samples(const Mesh& mesh, const std::string& name,
   PatchOptions patch_options = options.patches;
   patch_options.seed = seed_for_mesh(options.patches.seed, name);
   std::vector<HoleSample> samples;
-  const std::vector<cv::Mat> patches = depth_patches(mesh, patch_options);
+  const std::vector<DepthPatch> patches = depth_patches(mesh, patch_options);
   for (size_t p = 0; p < patches.size(); ++p) {
-    const cv::Mat mask = blob_mask(patches[p].size(), options.min_hole, options.max_hole,
-                                   options.margin, patch_options.seed + p);
+    const cv::Mat mask = blob_mask(patches[p].depth.size(), options.min_hole, options.max_hole,
+                                   options.margin, patch_options.seed + p) &
+                         patches[p].seen;
     samples.push_back(make_hole_sample(patches[p], mask));
   }
   return samples;
+}
+
+double restoration_rmse(const HoleSample& sample, const Inpainter& inpainter) {
+  cv::Mat input, restored;
+  sample.truth.convertTo(input, CV_32F);
+  input.setTo(0, sample.mask);
+  inpainter.inpaint(input, sample.mask, restored);
+  double sum = 0;
+  int count = 0;
+  for (int row = 0; row < restored.rows; ++row) {
+    for (int col = 0; col < restored.cols; ++col) {
+      if (!sample.mask.at<std::uint8_t>(row, col)) continue;
+      const double error = restored.at<float>(row, col) - sample.truth.at<double>(row, col);
+      sum += error * error;
+      ++count;
+    }
+  }
+  return count > 0 ? std::sqrt(sum / count) * sample.mean_edges_per_unit : 0;
 }
 
 }  // namespace rangefill

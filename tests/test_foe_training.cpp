@@ -16,16 +16,19 @@ std::vector<HoleSample> wave_samples(int count, int size, unsigned seed) {
   std::uniform_real_distribution<double> frequency(0.1, 0.6), phase(0, 6.3), amplitude(-0.05, 0.05);
   std::vector<HoleSample> samples;
   for (int s = 0; s < count; ++s) {
-    cv::Mat patch(size, size, CV_32F, cv::Scalar(0));
+    DepthPatch patch{cv::Mat(size, size, CV_32F, cv::Scalar(0)),
+                     cv::Mat(size, size, CV_8U, cv::Scalar(255))};
     for (int wave = 0; wave < 3; ++wave) {
       const double fx = frequency(random), fy = frequency(random), p = phase(random),
                    a = amplitude(random);
       for (int r = 0; r < size; ++r) {
-        for (int c = 0; c < size; ++c) patch.at<float>(r, c) += a * std::sin(fx * c + fy * r + p);
+        for (int c = 0; c < size; ++c) {
+          patch.depth.at<float>(r, c) += a * std::sin(fx * c + fy * r + p);
+        }
       }
     }
-    samples.push_back(
-        make_hole_sample(patch, blob_mask(patch.size(), 0.1, 0.3, 2, seed + s), TrendKind::none));
+    samples.push_back(make_hole_sample(patch, blob_mask(patch.depth.size(), 0.1, 0.3, 2, seed + s),
+                                       TrendKind::none));
   }
   return samples;
 }

@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include <Eigen/SparseCore>
 #include <opencv2/core.hpp>
 
 namespace rangefill {
@@ -60,16 +61,28 @@ double foe_energy_of_unknowns(const FoeModel& model, const cv::Mat& x, const cv:
                               cv::Mat* gradient = nullptr);
 
 struct FoeMapOptions {
-  int max_iterations = 200;           // L-BFGS iterations
-  double function_tolerance = 1e-7;   // stop when |ΔE| / E falls below this
-  double gradient_tolerance = 1e-10;  // or when max |∂E/∂x| over the unknowns does
+  int max_iterations = 100;           // bound steps after the start
+  double function_tolerance = 1e-6;   // stop when a step lowers E by less than this share of E
+  double gradient_tolerance = 1e-10;  // or when max |∂E/∂x| over the unknowns falls below this
 };
 
-/// The MAP estimate under `model`: `start` (CV_64F, already divided by foe_input_divisor) with its
-/// pixels under `mask` (CV_8U, non-zero = unknown) moved to a local minimum of E by L-BFGS (Ceres'
-/// GradientProblemSolver), the others returned unchanged. Deterministic.
-cv::Mat foe_map(const FoeModel& model, const cv::Mat& start, const cv::Mat& mask,
+/// The MAP estimate under `model` of the pixels of `image` (CV_64F, already divided by
+/// foe_input_divisor) under `mask` (CV_8U, non-zero = unknown); the other pixels are returned
+/// unchanged and the unknowns' values in `image` are not read. Inference starts from the harmonic
+/// fill (Laplace's equation; within the known values around each hole), then takes steps
+/// x ← x − M⁻¹∇E, reusing each sparse LDLᵀ factorisation (Eigen) while it makes
+/// fast progress: M is first the matrix of the Gaussian field with the same filters and weights
+/// (log(1 + y²/2) replaced by y²/2), a quadratic upper bound of E everywhere;
+/// when progress slows, the Hessian of E where it is positive definite (Newton), else the
+/// half-quadratic bound of Geman & Yang at the current point. Every step lowers E. Deterministic.
+cv::Mat foe_map(const FoeModel& model, const cv::Mat& image, const cv::Mat& mask,
                 const FoeMapOptions& options = {});
+
+/// ∂²E/∂u² at x over the unknowns u, the pixels of `mask` (CV_8U, non-zero) in row-major order:
+/// Σ_i α_i Σ_c ρ''(y_ic) J_ic J_icᵀ with ρ(y) = log(1 + y²/2). Positive definite at a strict local
+/// minimum (what foe_map returns), not elsewhere.
+Eigen::SparseMatrix<double> foe_hessian_of_unknowns(const FoeModel& model, const cv::Mat& x,
+                                                    const cv::Mat& mask);
 
 /// J ⋆ x (correlation, kernel CV_64F of odd size) at the pixels where the kernel lies inside x,
 /// 0 elsewhere. Plain loops: the same value at any thread count, unlike cv::filter2D.

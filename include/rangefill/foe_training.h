@@ -14,8 +14,8 @@
 namespace rangefill {
 
 /// The objective: the mean over samples (each divided by the RMS of its known pixels, as the model
-/// will divide its inputs) of ½‖M ⊙ (x* − truth)‖² / |M|, where x* = foe_map from the harmonic
-/// fill of the sample, as at repair time. Its parameters θ: the count × (size² − 1) coefficients of
+/// will divide its inputs) of ½‖M ⊙ (x* − truth)‖² / |M|, where x* = foe_map of the sample, as at
+/// repair time. Its parameters θ: the count × (size² − 1) coefficients of
 /// the filters on the 2-D DCT basis without its constant term (so every filter has zero mean; in
 /// units that make θ of order 1), then log α_i (count). The gradient is exact up to the MAP's
 /// convergence: implicit differentiation of ∇_u E(x*) = 0, one solve with the Hessian of E over
@@ -34,7 +34,6 @@ class FoeObjective {
 
  private:
   std::vector<HoleSample> samples_;
-  std::vector<cv::Mat> starts_;   // harmonic fills, CV_64F
   std::vector<cv::Mat> basis_;    // size × size DCT functions without the constant one
   double coefficient_scale_ = 1;  // the unit of the filter coefficients in θ
   int size_, count_, threads_;

@@ -8,6 +8,7 @@
 
 int main(int argc, char** argv) {
   using namespace rangefill;
+  // TEMPDISABLE cli::handle_interrupts();
   CLI::App app{"rangefill: fill the holes of 3D scans by range-image inpainting", "rangefill"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "rangefill 0.1.0");
@@ -19,6 +20,7 @@ int main(int argc, char** argv) {
   cli::add_depth_command(app, runner);
   cli::add_depth_bench_command(app, runner);
   cli::add_train_foe_command(app, runner);
+  cli::add_patch_bench_command(app, runner);
 
   cli::set_command_line(argc, argv);
   // OpenCV builds with the bundled OpenEXR read and write EXR (depth images) only when this is set

@@ -17,7 +17,7 @@ namespace fs = std::filesystem;
 
 struct TrainCommand {
   std::vector<std::string> meshes;
-  std::string validation = "bunny.ply,fandisk.ply,spot.ply", output, name = "depth";
+  std::string validation = kValidationMeshes, output, name = "depth";
   HoleSampleOptions samples;
   FoeTrainingOptions training;
 };
