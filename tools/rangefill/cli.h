@@ -64,10 +64,29 @@ void add_bench_command(CLI::App& app, Runner& runner);
 void add_depth_command(CLI::App& app, Runner& runner);
 void add_depth_bench_command(CLI::App& app, Runner& runner);
 void add_train_foe_command(CLI::App& app, Runner& runner);
+void add_patch_bench_command(CLI::App& app, Runner& runner);
+
+/// The meshes of ../shared/data/meshes that train-foe holds out and patch-bench scores on.
+inline const char* const kValidationMeshes = "bunny.ply,fandisk.ply,homer.ply";
 
 /// Sets RepairOptions' fallbacks from "front,least-area", "front", "least-area" or "none"; throws
 /// UsageError otherwise.
 void set_fallbacks(const std::string& list, RepairOptions& options);
+
+/// SIGINT, SIGTERM and SIGHUP no longer kill the process where it stands: a thread of their own
+/// takes them and exits with 128 + the signal's number, but never while an OutputGuard is held, so
+/// that every output is complete or absent and no temporary file is left behind. Call first in
+/// main, before any other thread exists (threads inherit the blocked signals).
+void handle_interrupts();
+
+/// Held while an output file is written: an interrupt waits until it is gone.
+class OutputGuard {
+ public:
+  OutputGuard();
+  ~OutputGuard();
+  OutputGuard(const OutputGuard&) = delete;
+  OutputGuard& operator=(const OutputGuard&) = delete;
+};
 
 /// Reads a mesh, printing its warnings to stderr as "warning: ..." lines.
 Mesh load_mesh(const std::string& path);
