@@ -1,10 +1,12 @@
-#include "rangefill/foe.h"
 #include "foe.h"
+#include "rangefill/foe.h"
 
 #include <cmath>
 #include <random>
 
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
+#include <opencv2/imgproc.hpp>
 
 #include "rangefill/errors.h"
 
@@ -52,6 +54,68 @@ TEST(FoeEnergy, GradientMatchesFiniteDifferences) {
       x.at<double>(r, c) = saved;
       EXPECT_NEAR(gradient.at<double>(r, c), (up - down) / (2 * h), 1e-6) << r << ", " << c;
     }
+  }
+}
+
+// The Hessian over the unknowns matches central finite differences of the gradient there.
+TEST(FoeHessian, MatchesFiniteDifferencesOfTheGradient) {
+  const FoeModel model = random_model(3);
+  cv::Mat x = random_image(8, 9, 4);
+  cv::Mat mask = cv::Mat::zeros(x.size(), CV_8U);
+  mask(cv::Rect(2, 2, 4, 3)).setTo(255);
+  mask.at<std::uint8_t>(7, 0) = 255;  // on the border, under fewer cliques
+  std::vector<cv::Point> unknowns;
+  cv::findNonZero(mask, unknowns);
+  const Eigen::MatrixXd hessian(foe_hessian_of_unknowns(model, x, mask));
+  ASSERT_EQ(hessian.rows(), static_cast<Eigen::Index>(unknowns.size()));
+  const double h = 1e-6;
+  for (size_t b = 0; b < unknowns.size(); ++b) {
+    cv::Mat up, down;
+    const double saved = x.at<double>(unknowns[b]);
+    x.at<double>(unknowns[b]) = saved + h;
+    foe_energy_of_unknowns(model, x, mask, &up);
+    x.at<double>(unknowns[b]) = saved - h;
+    foe_energy_of_unknowns(model, x, mask, &down);
+    x.at<double>(unknowns[b]) = saved;
+    for (size_t a = 0; a < unknowns.size(); ++a) {
+      const double numeric = (up.at<double>(unknowns[a]) - down.at<double>(unknowns[a])) / (2 * h);
+      EXPECT_NEAR(hessian(a, b), numeric, 1e-5 * std::max(1.0, std::abs(numeric)))
+          << a << ", " << b;
+    }
+  }
+}
+
+// MAP inference ends at a stationary point of E over the unknowns, below the harmonic start,
+// with the known pixels untouched and the unknowns' input values unread.
+TEST(FoeMap, ReachesAStationaryPointBelowTheStart) {
+  for (unsigned seed : {5u, 6u, 7u}) {
+    FoeModel model = random_model(seed);
+    for (cv::Mat& filter : model.filters) filter -= cv::mean(filter)[0];
+    cv::Mat image(20, 22, CV_64F), mask = cv::Mat::zeros(image.size(), CV_8U);
+    for (int r = 0; r < image.rows; ++r) {
+      for (int c = 0; c < image.cols; ++c) {
+        image.at<double>(r, c) = 0.3 * std::sin(0.4 * c + seed) * std::cos(0.3 * r) + 0.01 * r;
+        const double u = (c - 11) / 6.0, v = (r - 9) / 4.0;
+        if (u * u + v * v < 1) mask.at<std::uint8_t>(r, c) = 255;
+      }
+    }
+    FoeMapOptions options;
+    options.function_tolerance = 1e-15;
+    options.gradient_tolerance = 1e-12;
+    cv::Mat garbage = image.clone();
+    garbage.setTo(1e6, mask);
+    const cv::Mat x = foe_map(model, garbage, mask, options);
+    EXPECT_EQ(cv::norm(x, image, cv::NORM_INF, ~mask), 0) << seed;
+    cv::Mat gradient;
+    const double energy = foe_energy_of_unknowns(model, x, mask, &gradient);
+    double largest = 0;
+    cv::minMaxLoc(cv::abs(gradient), nullptr, &largest, nullptr, nullptr, mask);
+    EXPECT_LT(largest, 1e-9) << seed;
+    cv::Mat image32, start32, start;
+    image.convertTo(image32, CV_32F);
+    make_inpainter("harmonic")->inpaint(image32, mask, start32);
+    start32.convertTo(start, CV_64F);
+    EXPECT_LT(energy, foe_energy_of_unknowns(model, start, mask)) << seed;
   }
 }
 
