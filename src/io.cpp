@@ -78,27 +78,49 @@ std::string serialize_mesh(const Mesh& mesh, MeshFormat format, const WriteOptio
   return {};
 }
 
+namespace {
+
+// Writes all of `bytes` to `fd` and syncs it; 0 or the errno of the first failure.
+int write_all(int fd, const std::string& bytes) {
+  size_t written = 0;
+  while (written < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return errno;
+    }
+    written += static_cast<size_t>(n);
+  }
+  return ::fsync(fd) != 0 ? errno : 0;
+}
+
+}  // namespace
+
 void write_file_atomically(const std::string& bytes, const fs::path& path) {
   static std::atomic<unsigned> counter{0};
   const fs::path directory = path.has_parent_path() ? path.parent_path() : fs::path(".");
   const fs::path temporary =
       directory / ("." + path.filename().string() + ".rangefill-" + std::to_string(::getpid()) +
                    "-" + std::to_string(counter++) + ".tmp");
-  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-  if (fd < 0) throw IoError(path.string() + ": cannot create file: " + std::strerror(errno));
-  size_t written = 0;
+  // An unnamed file (O_TMPFILE) while the bytes are written: a process that dies meanwhile, even
+  // by SIGKILL, leaves nothing behind. It gets the temporary name only to be renamed at once.
+  // Where the file system has no O_TMPFILE (or /proc is missing), a named temporary file is used.
   int error = 0;
-  while (written < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      error = errno;
-      break;
-    }
-    written += static_cast<size_t>(n);
+  bool linked = false;
+  const int unnamed = ::open(directory.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+  if (unnamed >= 0) {
+    error = write_all(unnamed, bytes);
+    const std::string self = "/proc/self/fd/" + std::to_string(unnamed);
+    linked = error == 0 &&
+             ::linkat(AT_FDCWD, self.c_str(), AT_FDCWD, temporary.c_str(), AT_SYMLINK_FOLLOW) == 0;
+    if (::close(unnamed) != 0 && error == 0) error = errno;
   }
-  if (error == 0 && ::fsync(fd) != 0) error = errno;
-  if (::close(fd) != 0 && error == 0) error = errno;
+  if (error == 0 && !linked) {
+    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0) throw IoError(path.string() + ": cannot create file: " + std::strerror(errno));
+    error = write_all(fd, bytes);
+    if (::close(fd) != 0 && error == 0) error = errno;
+  }
   if (error == 0 && ::rename(temporary.c_str(), path.c_str()) != 0) error = errno;
   if (error != 0) {
     ::unlink(temporary.c_str());

@@ -352,6 +352,13 @@ RepairResult repair(const Mesh& input, const RepairOptions& options) {
       result.restoration_matrix.push_back({mesh.vertex_count(),
                                            static_cast<long long>(surface.topology.edges.size()),
                                            mesh.face_count()});
+      const int loops = static_cast<int>(surface.holes.loops.size());
+      for (int id : options.holes) {
+        if (id < 0 || id >= loops) {
+          throw InvalidInput("repair: there is no boundary loop " + std::to_string(id) +
+                             " to fill (the mesh has " + std::to_string(loops) + ")");
+        }
+      }
     }
     std::vector<const BoundaryLoop*> selected;
     for (const BoundaryLoop& loop : surface.holes.loops) {
@@ -361,8 +368,10 @@ RepairResult repair(const Mesh& input, const RepairOptions& options) {
       const bool skipped_border = pass == 0 && options.holes.empty() &&
                                   options.skip_longest_loops && loop.longest_in_component;
       if (skipped_border) result.skipped_borders.push_back(loop.id);
-      const bool chosen = (pass > 0 || named || (options.holes.empty() && !skipped_border)) &&
-                          within_size_limits(loop, options);
+      const bool wanted = pass > 0 || named || (options.holes.empty() && !skipped_border);
+      const bool fits = within_size_limits(loop, options);
+      if (pass == 0 && wanted && !fits) result.oversized.push_back(loop.id);
+      const bool chosen = wanted && fits;
       if (chosen) {
         selected.push_back(&loop);
       } else {

@@ -1,14 +1,20 @@
 // The rangefill binary as a user runs it: exit codes, one-line errors, outputs.
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
 #include <sys/wait.h>
 
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "rangefill/depth.h"
+#include "rangefill/holes.h"
 #include "rangefill/io.h"
 #include "rangefill/metrics.h"
 #include "support.h"
@@ -269,6 +275,159 @@ TEST(Cli, DepthBenchMeasuresABackEnd) {
   EXPECT_NE(bench.out.find("fill_depth harmonic"), std::string::npos) << bench.out;
   EXPECT_NE(bench.out.find("cv::inpaint telea, all invalid masked"), std::string::npos);
   EXPECT_EQ(run("depth-bench --inpainters harmonic").exit_code, 2);
+  fs::remove_all(dir);
+}
+
+// A sheet with a small and a large hole: `rangefill repair` leaves the border open and says so,
+// leaves loops over --max-hole-size open and says so, fills exactly --holes, refuses a loop that
+// does not exist (exit 3), and with --fill-all reports the border it cannot fill (a flat sheet's
+// border: any fill would lie on the sheet) while the holes are repaired, exit 5.
+TEST(Cli, RepairChoosesItsLoopsAndSaysWhichItLeftOpen) {
+  const fs::path dir = testing::temporary_directory("cli-open");
+  const Mesh sheet = testing::remove_faces(testing::make_grid(30), [](const Vec3& p) {
+    return (p - Vec3(8, 15, 0)).norm() < 3 || (p - Vec3(20, 15, 0)).norm() < 6;
+  });
+  write_mesh(sheet, dir / "sheet.ply");
+  int border = -1, small = -1, large = -1;
+  for (const BoundaryLoop& loop : find_holes(sheet, build_topology(sheet)).loops) {
+    (loop.longest_in_component ? border : loop.vertices.size() < 30 ? small : large) = loop.id;
+  }
+  ASSERT_TRUE(border >= 0 && small >= 0 && large >= 0);
+  const std::string repair = "repair " + (dir / "sheet.ply").string() + " -o ";
+  auto loops_of = [&](const std::string& name) {
+    return check_manifold(read_mesh(dir / name).mesh).boundary_loops;
+  };
+  const std::string border_note =
+      "rangefill: note: loop " + std::to_string(border) + " is the longest of its component";
+
+  const Outcome plain = run(repair + (dir / "plain.ply").string());
+  EXPECT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_NE(plain.err.find(border_note), std::string::npos) << plain.err;
+  EXPECT_EQ(loops_of("plain.ply"), 1);
+
+  const int small_edges =
+      static_cast<int>(find_holes(sheet, build_topology(sheet)).loops[small].vertices.size());
+  const Outcome limited = run(repair + (dir / "limited.ply").string() + " --max-hole-size " +
+                              std::to_string(small_edges));
+  EXPECT_EQ(limited.exit_code, 0) << limited.err;
+  EXPECT_NE(limited.err.find("rangefill: note: loop " + std::to_string(large) +
+                             " is larger than --max-hole-size"),
+            std::string::npos)
+      << limited.err;
+  EXPECT_EQ(loops_of("limited.ply"), 2);
+
+  const Outcome named =
+      run(repair + (dir / "named.ply").string() + " --holes " + std::to_string(large) + " --json");
+  EXPECT_EQ(named.exit_code, 0) << named.err;
+  EXPECT_EQ(nlohmann::json::parse(named.out)["holes"].size(), 1u);
+  EXPECT_EQ(loops_of("named.ply"), 2);
+
+  const Outcome missing = run(repair + (dir / "missing.ply").string() + " --holes 7");
+  EXPECT_EQ(missing.exit_code, 3);
+  EXPECT_EQ(missing.err,
+            "rangefill: repair: there is no boundary loop 7 to fill (the mesh has 3)\n");
+  EXPECT_FALSE(fs::exists(dir / "missing.ply"));
+
+  const Outcome all = run(repair + (dir / "all.ply").string() + " --fill-all --report " +
+                          (dir / "all.json").string());
+  EXPECT_EQ(all.exit_code, 5) << all.err;
+  EXPECT_NE(all.err.find("partial repair, 1 holes left open"), std::string::npos) << all.err;
+  EXPECT_EQ(loops_of("all.ply"), 1);  // the holes are filled all the same
+  const nlohmann::json report = nlohmann::json::parse(slurp(dir / "all.json"));
+  int refused = 0;
+  for (const auto& hole : report["holes"]) {
+    if (hole["filled"].get<bool>()) continue;
+    ++refused;
+    EXPECT_EQ(hole["id"].get<int>(), border);
+    EXPECT_NE(hole["failure"].get<std::string>().find("hole " + std::to_string(border) + ": "),
+              std::string::npos);
+  }
+  EXPECT_EQ(refused, 1);
+
+  // The report may not be written over the input or the output.
+  EXPECT_EQ(run(repair + (dir / "r.ply").string() + " --report " + (dir / "sheet.ply").string())
+                .exit_code,
+            2);
+  fs::remove_all(dir);
+}
+
+// Ctrl-C during `rangefill repair` leaves no temporary file, and the output is either absent or
+// complete, byte for byte what an uninterrupted run writes; the interrupted run exits with 130.
+// SIGINT is sent once while the mesh is repaired and once while the output is being written (as
+// soon as the process holds a file of the output directory open).
+TEST(Cli, InterruptedRepairLeavesNoTemporaryOrPartialFile) {
+  const fs::path dir = testing::temporary_directory("cli-interrupt");
+  const Mesh capless =
+      testing::remove_faces(testing::make_sphere(90), [](const Vec3& p) { return p.z() > 0.97; });
+  write_mesh(capless, dir / "in.ply");
+  const fs::path out = dir / "out.ply";
+  const std::vector<std::string> arguments = {
+      RANGEFILL_CLI, "repair", (dir / "in.ply").string(), "-o", out.string(),
+      "--fill-all",  "--ascii"};
+  auto spawn = [&] {
+    std::vector<char*> argv;
+    for (const std::string& argument : arguments)
+      argv.push_back(const_cast<char*>(argument.c_str()));
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+    pid_t pid = 0;
+    EXPECT_EQ(posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ), 0);
+    posix_spawn_file_actions_destroy(&actions);
+    return pid;
+  };
+  auto exit_code = [](pid_t pid) {
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  };
+  // Whether the process holds open a file of `dir` other than the input: the output being written.
+  auto writing = [&](pid_t pid) {
+    std::error_code error;
+    for (const fs::directory_entry& fd :
+         fs::directory_iterator("/proc/" + std::to_string(pid) + "/fd", error)) {
+      const fs::path target = fs::read_symlink(fd.path(), error);
+      if (!error && target.parent_path() == dir && target.filename() != "in.ply") return true;
+    }
+    return false;
+  };
+  auto expect_clean = [&](const std::string& complete) {
+    for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
+      EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+    }
+    if (fs::exists(out)) EXPECT_TRUE(slurp(out) == complete) << "a partial output";
+  };
+
+  const auto start = std::chrono::steady_clock::now();
+  ASSERT_EQ(exit_code(spawn()), 0);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::string complete = slurp(out);
+  ASSERT_FALSE(complete.empty());
+
+  fs::remove(out);
+  const pid_t repairing = spawn();
+  std::this_thread::sleep_for(std::chrono::duration<double>(seconds / 3));
+  ::kill(repairing, SIGINT);
+  EXPECT_EQ(exit_code(repairing), 130);
+  expect_clean(complete);
+  EXPECT_FALSE(fs::exists(out));
+
+  bool caught_writing = false;
+  for (int attempt = 0; attempt < 5 && !caught_writing; ++attempt) {
+    fs::remove(out);
+    const pid_t pid = spawn();
+    while (::waitpid(pid, nullptr, WNOHANG) == 0 && !(caught_writing = writing(pid))) {
+      std::this_thread::sleep_for(std::chrono::microseconds(100));
+    }
+    if (!caught_writing) continue;  // it finished in between two looks
+    ::kill(pid, SIGINT);
+    EXPECT_EQ(exit_code(pid), 130);
+    expect_clean(complete);
+  }
+  EXPECT_TRUE(caught_writing) << "never saw the output being written";
   fs::remove_all(dir);
 }
 

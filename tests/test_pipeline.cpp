@@ -3,11 +3,13 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <numeric>
 #include <set>
 
 #include <gtest/gtest.h>
 
+#include "rangefill/errors.h"
 #include "rangefill/metrics.h"
 #include "support.h"
 
@@ -404,6 +406,116 @@ TEST(HardHoles, HoleAroundAnIslandIsReportedAndTheOthersRepaired) {
   EXPECT_EQ(result.holes_left, 1);
   testing::expect_input_preserved(holed, result.mesh);
   for (const Vec3& p : generated_vertices(result.mesh)) EXPECT_LT((p - other).norm(), 3.0);
+}
+
+// ------------------------------------------------------------------------------------------------
+// Open surfaces: which loops are filled.
+
+// Two open sheets side by side, two components: a 30×30 grid with a small hole (radius 3, at
+// x = 8) and a large one (radius 6, at x = 20), and a 10×10 grid 40 to the right with a hole of
+// radius 2.
+Mesh two_open_sheets() {
+  Mesh sheet = testing::remove_faces(testing::make_grid(30), [](const Vec3& p) {
+    return (p - Vec3(8, 15, 0)).norm() < 3 || (p - Vec3(20, 15, 0)).norm() < 6;
+  });
+  const Mesh small = testing::remove_faces(
+      testing::make_grid(10), [](const Vec3& p) { return (p - Vec3(5, 5, 0)).norm() < 2; });
+  const int offset = sheet.vertex_count();
+  for (const Vec3& p : small.positions) sheet.positions.push_back(p + Vec3(40, 0, 0));
+  for (const Triangle& t : small.triangles) {
+    sheet.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  }
+  return make_mesh(sheet.positions, sheet.triangles);
+}
+
+// The loop whose vertices lie round `centre` (x, y), nearest first.
+int loop_around(const HoleSet& holes, const Mesh& mesh, const Vec3& centre) {
+  int best = -1;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const BoundaryLoop& loop : holes.loops) {
+    Vec3 mean = Vec3::Zero();
+    for (int v : loop.vertices) mean += mesh.positions[v];
+    mean /= static_cast<double>(loop.vertices.size());
+    if ((mean - centre).norm() < nearest) {
+      nearest = (mean - centre).norm();
+      best = loop.id;
+    }
+  }
+  return best;
+}
+
+TEST(OpenSurfaces, TheLongestLoopOfEachComponentIsLeftOpenAsItsBorder) {
+  const Mesh sheets = two_open_sheets();
+  const HoleSet holes = find_holes(sheets, build_topology(sheets));
+  ASSERT_EQ(holes.loops.size(), 5u);
+  std::vector<int> borders;
+  for (const BoundaryLoop& loop : holes.loops) {
+    if (loop.longest_in_component) borders.push_back(loop.id);
+  }
+  ASSERT_EQ(borders.size(), 2u);
+
+  RepairOptions options;
+  options.skip_longest_loops = true;
+  const RepairResult result = repair(sheets, options);
+  EXPECT_EQ(result.skipped_borders, borders);
+  EXPECT_EQ(result.holes.size(), 3u);
+  for (const HoleReport& hole : result.holes) {
+    EXPECT_TRUE(hole.filled) << hole.failure;
+    EXPECT_EQ(std::count(borders.begin(), borders.end(), hole.id), 0);
+  }
+  EXPECT_EQ(result.holes_left, 0);
+  EXPECT_EQ(check_manifold(result.mesh).boundary_loops, 2);
+  testing::expect_input_preserved(sheets, result.mesh);
+
+  // Without the policy every loop is attempted, the borders too; but any fill of a flat sheet's
+  // border would lie on the sheet itself: both are refused and reported, the holes still filled.
+  const RepairResult all = repair(sheets);
+  EXPECT_TRUE(all.skipped_borders.empty());
+  ASSERT_EQ(all.holes.size(), 5u);
+  for (const HoleReport& hole : all.holes) {
+    const bool border = std::count(borders.begin(), borders.end(), hole.id) > 0;
+    EXPECT_EQ(hole.filled, !border) << hole.id;
+    if (border) EXPECT_NE(hole.failure.find("hole " + std::to_string(hole.id)), std::string::npos);
+  }
+  EXPECT_EQ(all.holes_left, 2);
+  EXPECT_EQ(all.mesh.triangles, result.mesh.triangles);
+}
+
+TEST(OpenSurfaces, NamedLoopsAndSizeLimitsChooseWhatIsFilled) {
+  const Mesh sheets = two_open_sheets();
+  const HoleSet holes = find_holes(sheets, build_topology(sheets));
+  const int small = loop_around(holes, sheets, Vec3(8, 15, 0));
+  const int large = loop_around(holes, sheets, Vec3(20, 15, 0));
+  const int other = loop_around(holes, sheets, Vec3(45, 5, 0));
+
+  RepairOptions named;
+  named.holes = {large};
+  const RepairResult one = repair(sheets, named);
+  ASSERT_EQ(one.holes.size(), 1u);
+  EXPECT_EQ(one.holes[0].id, large);
+  EXPECT_TRUE(one.holes[0].filled);
+  EXPECT_EQ(check_manifold(one.mesh).boundary_loops, 4);
+
+  // Loops larger than the limits are left open, said in `oversized`, and not counted as left.
+  for (const bool by_area : {false, true}) {
+    RepairOptions limited;
+    limited.skip_longest_loops = true;
+    if (by_area) {
+      limited.max_hole_area = holes.loops[small].area * 1.01;
+    } else {
+      limited.max_hole_edges = static_cast<int>(holes.loops[small].vertices.size());
+    }
+    const RepairResult result = repair(sheets, limited);
+    EXPECT_EQ(result.oversized, std::vector<int>{large}) << by_area;
+    ASSERT_EQ(result.holes.size(), 2u) << by_area;  // the small hole and the other sheet's
+    EXPECT_EQ(result.holes[0].id, std::min(small, other));
+    EXPECT_EQ(result.holes_left, 0);
+    EXPECT_EQ(check_manifold(result.mesh).boundary_loops, 3);
+  }
+
+  RepairOptions missing;
+  missing.holes = {static_cast<int>(holes.loops.size())};
+  EXPECT_THROW(repair(sheets, missing), InvalidInput);
 }
 
 }  // namespace

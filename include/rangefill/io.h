@@ -36,7 +36,9 @@ ReadResult parse_mesh(std::string_view bytes, MeshFormat format, const std::stri
 std::string read_file(const std::filesystem::path& path);
 
 /// Writes `bytes` to a fresh temporary file beside `path`, then renames it over `path`, so that a
-/// failure leaves no partial file and a reader never sees one. Throws IoError.
+/// failure leaves no partial file and a reader never sees one. The temporary file has no name
+/// while it is written (O_TMPFILE, where the file system has it): a process killed meanwhile
+/// leaves nothing behind. Throws IoError.
 void write_file_atomically(const std::string& bytes, const std::filesystem::path& path);
 
 enum class Encoding { binary, ascii };

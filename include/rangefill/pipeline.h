@@ -88,7 +88,8 @@ struct RepairOptions {
   ProjectionOptions projection;
   RangeImageOptions image;
   BackProjectionOptions back_projection;
-  std::vector<int> holes;           // ids of the input's loops to fill; empty = every loop
+  std::vector<int> holes;           // ids of the input's loops to fill (each must exist: else
+                                    // InvalidInput); empty = every loop
   bool skip_longest_loops = false;  // with `holes` empty, leave open the longest loop of each
                                     // component: the outer border of an open scan
   int max_hole_edges = 0;           // loops with more boundary edges are left open; 0 = no limit
@@ -107,6 +108,7 @@ struct RepairResult {
   std::vector<std::array<long long, 3>> restoration_matrix;
   int holes_left = 0;                // boundary loops of the result that were asked to be filled
   std::vector<int> skipped_borders;  // input loops left open by skip_longest_loops
+  std::vector<int> oversized;  // input loops to fill left open by max_hole_edges / max_hole_area
 };
 
 /// What every hole of a pass reads: the mesh and what is derived from it once per pass.

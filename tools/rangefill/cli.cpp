@@ -1,11 +1,16 @@
 #include "cli.h"
 
+#include <pthread.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <mutex>
 #include <sstream>
+#include <thread>
 
 #include "rangefill/errors.h"
 #include "rangefill/foe.h"
@@ -85,8 +90,33 @@ bool stderr_is_terminal() {
 }
 
 namespace {
-std::string invocation;  // the command line, for reports that say how they were made
+std::string invocation;   // the command line, for reports that say how they were made
+std::mutex output_mutex;  // held while an output is written; the interrupt thread waits for it
 }  // namespace
+
+void handle_interrupts() {
+  sigset_t signals;
+  sigemptyset(&signals);
+  for (int signal : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&signals, signal);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  std::thread([signals] {
+    int signal = 0;
+    while (sigwait(&signals, &signal) != 0) {
+    }
+    std::lock_guard<std::mutex> lock(output_mutex);
+    const char message[] = "rangefill: interrupted\n";
+    [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, message, sizeof message - 1);
+    std::_Exit(128 + signal);
+  }).detach();
+}
+
+OutputGuard::OutputGuard() {
+  output_mutex.lock();
+}
+
+OutputGuard::~OutputGuard() {
+  output_mutex.unlock();
+}
 
 void set_command_line(int argc, char** argv) {
   invocation.clear();

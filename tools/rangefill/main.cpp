@@ -8,7 +8,7 @@
 
 int main(int argc, char** argv) {
   using namespace rangefill;
-  // TEMPDISABLE cli::handle_interrupts();
+  cli::handle_interrupts();  // before any thread exists
   CLI::App app{"rangefill: fill the holes of 3D scans by range-image inpainting", "rangefill"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "rangefill 0.1.0");

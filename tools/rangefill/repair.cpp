@@ -2,7 +2,6 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -41,17 +40,30 @@ std::vector<int> parse_hole_ids(const std::string& text) {
   return ids;
 }
 
-// 16-bit PNGs of one hole's range image: depth (0 = unknown), mask, restored depth.
+// 16-bit PNGs of one hole's range image: depth (0 = unknown), mask, restored depth; each written
+// atomically.
 void write_debug_images(const std::string& dir, const HoleImages& images) {
   const std::string stem = dir + "/hole-" + std::to_string(images.id);
-  const cv::Mat known = images.image.labels != kHolePixel;
   cv::Mat depth, restored;
   images.image.depth.convertTo(depth, CV_16U, 65535.0);
   depth.setTo(0, images.image.labels != kKnownPixel);
   images.restored.convertTo(restored, CV_16U, 65535.0);
-  cv::imwrite(stem + "-depth.png", depth);
-  cv::imwrite(stem + "-mask.png", images.image.mask());
-  cv::imwrite(stem + "-restored.png", restored);
+  for (const auto& [suffix, image] : {std::pair{"-depth.png", depth},
+                                      {"-mask.png", images.image.mask()},
+                                      {"-restored.png", restored}}) {
+    std::vector<uchar> png;
+    cv::imencode(".png", image, png);
+    const OutputGuard guard;
+    write_file_atomically(std::string(png.begin(), png.end()), stem + suffix);
+  }
+}
+
+// Throws UsageError when `path` (an output) names the same file as `other` (when that exists).
+void refuse_same_file(const std::string& path, const std::string& other, const std::string& what) {
+  std::error_code error;
+  if (fs::exists(path) && fs::equivalent(path, other, error)) {
+    throw UsageError(path + ": is the " + what + "; choose another file");
+  }
 }
 
 nlohmann::json report_json(const RepairCommand& command, const RepairResult& result,
@@ -95,6 +107,7 @@ nlohmann::json report_json(const RepairCommand& command, const RepairResult& res
           {"restoration_matrix", result.restoration_matrix},
           {"holes_left", result.holes_left},
           {"skipped_borders", result.skipped_borders},
+          {"oversized", result.oversized},
           {"seconds", seconds}};
 }
 
@@ -115,6 +128,11 @@ int run_repair(RepairCommand& command) {
   if (!command.in_place && fs::exists(command.output) &&
       fs::equivalent(command.input, command.output)) {
     throw UsageError(command.output + ": is the input; pass --in-place to overwrite it");
+  }
+  if (!command.report.empty()) {
+    refuse_same_file(command.report, command.input, "input");
+    if (command.report == command.output) throw UsageError(command.report + ": is the output");
+    refuse_same_file(command.report, command.output, "output");
   }
   format_from_extension(command.output);  // fail before the work, not after
   check_inpainter(command.options.inpainter, "--inpainter");
@@ -151,16 +169,24 @@ int run_repair(RepairCommand& command) {
 
   WriteOptions write_options;
   if (command.ascii) write_options.encoding = Encoding::ascii;
-  write_mesh(result.mesh, command.output, write_options);
+  {
+    const OutputGuard guard;
+    write_mesh(result.mesh, command.output, write_options);
+  }
 
   for (int id : result.skipped_borders) {
     std::cerr << "rangefill: note: loop " << id
               << " is the longest of its component and was left open as the border of an open "
                  "scan; --fill-all fills it\n";
   }
+  for (int id : result.oversized) {
+    std::cerr << "rangefill: note: loop " << id
+              << " is larger than --max-hole-size or --max-hole-area and was left open\n";
+  }
   const nlohmann::json report = report_json(command, result, seconds);
   if (!command.report.empty()) {
-    std::ofstream(command.report) << report.dump(2) << "\n";
+    const OutputGuard guard;
+    write_file_atomically(report.dump(2) + "\n", command.report);
   }
   int failed = 0;
   for (const HoleReport& hole : result.holes) failed += !hole.filled;
