@@ -492,7 +492,8 @@ cv::Mat foe_map(const FoeModel& model, const cv::Mat& image, const cv::Mat& mask
   // progress slows, M becomes the Hessian at the current point if it is positive definite (Newton:
   // quadratic convergence near the minimum), else the half-quadratic bound there (Geman & Yang).
   // A step that would raise E is retried with a matrix made at x, the half-quadratic bound last,
-  // which cannot raise E; only a matrix made at x may end the iterations by gaining too little.
+  // which cannot raise E. The iterations end when the steps to come are predicted to gain less
+  // than the tolerance, or when a matrix made at x gains less.
   enum class Matrix { bound, other } kind = Matrix::bound;
   bool fresh = false;  // M was made at x
   Evaluation current = evaluate(model, x, problem.runs, problem.unknowns);
@@ -519,10 +520,12 @@ cv::Mat foe_map(const FoeModel& model, const cv::Mat& image, const cv::Mat& mask
     const cv::Mat trial = step_from(x, current.gradient);
     Evaluation next = evaluate(model, trial, problem.runs, problem.unknowns);
     const double gain = current.energy - next.energy;
-    // At the minimum E changes by rounding only; a step that shrinks ∇E is then taken.
-    const bool flat =
-        gain >= -64 * std::numeric_limits<double>::epsilon() * std::abs(current.energy) &&
-        next.gradient.lpNorm<Eigen::Infinity>() < current.gradient.lpNorm<Eigen::Infinity>();
+    // Changes of E below `resolution` are rounding: there a step that shrinks ∇E is taken, and
+    // gains tell nothing of the rate of convergence.
+    const double resolution =
+        64 * std::numeric_limits<double>::epsilon() * std::abs(current.energy);
+    const bool flat = gain >= -resolution && next.gradient.lpNorm<Eigen::Infinity>() <
+                                                 current.gradient.lpNorm<Eigen::Infinity>();
     if (!(gain >= 0) && !flat) {  // a stale matrix or a Newton step too long
       if (fresh && kind == Matrix::bound) break;
       if (fresh) {
@@ -534,11 +537,16 @@ cv::Mat foe_map(const FoeModel& model, const cv::Mat& image, const cv::Mat& mask
     }
     x = trial;
     current = std::move(next);
-    const bool small = gain <= options.function_tolerance * std::abs(current.energy);
+    // Converging linearly at rate ρ = gain / last gain, the steps to come gain gain·ρ / (1 − ρ).
+    const double tolerance = options.function_tolerance * std::abs(current.energy);
+    const bool have_rate = std::isfinite(last_gain) && gain > resolution;
+    const double rate = have_rate ? gain / last_gain : 0;
+    if (have_rate && rate < 0.5 && gain * rate / (1 - rate) <= tolerance) break;
+    const bool small = gain <= tolerance;
     if (small && fresh) break;
     if (kind == Matrix::bound && fresh) kind = Matrix::other;  // not a bound at the new x
     fresh = false;
-    if (small || gain > 0.5 * last_gain) refresh();
+    if (small || rate > 0.5) refresh();
     last_gain = gain;
   }
   return x;

@@ -124,8 +124,8 @@ FoeObjective::FoeObjective(std::vector<HoleSample> samples, int size, int count,
       count_(count),
       threads_(std::max(1, threads)) {
   if (size < 3 || size % 2 == 0) throw InvalidInput("foe training: filter size must be odd, >= 3");
-  if (count < 1 || count > size * size - 1) {
-    throw InvalidInput("foe training: filter count must be in [1, size² − 1]");
+  if (count < 1 || count > 3 * (size * size - 1)) {
+    throw InvalidInput("foe training: filter count must be in [1, 3 (size² − 1)]");
   }
   // The model divides its inputs by the RMS of the known pixels (FoeModel::known_rms): so do the
   // samples, and the loss is measured in those units.
@@ -178,7 +178,13 @@ FoeModel FoeObjective::model(const std::vector<double>& theta) const {
 std::vector<double> FoeObjective::initial_parameters() const {
   const int functions = static_cast<int>(basis_.size());
   std::vector<double> theta(parameter_count(), 0.0);  // α = 1
-  for (int i = 0; i < count_; ++i) theta[i * functions + i] = 1;
+  for (int i = 0; i < count_; ++i) {
+    // Beyond the basis, sums and then differences of neighbouring basis functions.
+    const int round = i / functions, j = i % functions;
+    theta[i * functions + j] = round == 0 ? 1 : std::sqrt(0.5);
+    if (round > 0)
+      theta[i * functions + (j + 1) % functions] = round == 1 ? std::sqrt(0.5) : -std::sqrt(0.5);
+  }
   return theta;
 }
 

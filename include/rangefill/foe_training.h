@@ -27,8 +27,9 @@ class FoeObjective {
   int parameter_count() const;
   /// The objective at θ; with `gradient`, also ∂/∂θ. Deterministic at any thread count.
   double evaluate(const std::vector<double>& theta, std::vector<double>* gradient) const;
-  /// θ of the first `count` DCT filters (lowest frequencies first), all scaled so that the first
-  /// one's responses on the samples have unit spread; α = 1.
+  /// θ of the first `count` DCT filters (lowest frequencies first; past the basis, normalised sums
+  /// and then differences of neighbouring ones), all scaled so that the first one's responses on
+  /// the samples have unit spread; α = 1.
   std::vector<double> initial_parameters() const;
   FoeModel model(const std::vector<double>& theta) const;
 
@@ -41,7 +42,7 @@ class FoeObjective {
 
 struct FoeTrainingOptions {
   int size = 3;          // filters are size × size
-  int count = 8;         // at most size² − 1
+  int count = 8;         // at most 3 (size² − 1): the filters may be over-complete
   int iterations = 100;  // L-BFGS iterations over θ
   int threads = 2;
   /// Called after each iteration with its number, the training objective and the seconds so far.
