@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets of tests/fuzz with clang into build-fuzz/ and runs each mesh reader's
-# for FUZZ_SECONDS (default 60) from the seed corpus tests/fuzz/corpus/<format>, two at a time.
+# Builds the libFuzzer targets of tests/fuzz with clang into build-fuzz/ and runs each (the mesh
+# readers and the depth reader's PNG check) for FUZZ_SECONDS (default 60) from the seed corpus
+# tests/fuzz/corpus/<format>, two at a time.
 # New inputs go to build-fuzz/corpus/, findings to build-fuzz/findings/<format>/; a finding fails.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -35,13 +36,17 @@ report() {
 }
 
 failed=0
-for pair in "ply obj" "off stl"; do
-  set -- $pair
-  fuzz "$1" & first=$!
-  fuzz "$2" & second=$!
-  status=0; wait "$first" || status=$?
-  report "$1" "$status" || failed=1
-  status=0; wait "$second" || status=$?
-  report "$2" "$status" || failed=1
+for pair in "ply obj" "off stl" "png"; do
+  pids=()
+  for format in $pair; do
+    fuzz "$format" &
+    pids+=($!)
+  done
+  formats=($pair)
+  for i in "${!pids[@]}"; do
+    status=0
+    wait "${pids[$i]}" || status=$?
+    report "${formats[$i]}" "$status" || failed=1
+  done
 done
 exit "$failed"

@@ -11,6 +11,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "png_check.h"
 #include "rangefill/errors.h"
 #include "rangefill/io.h"
 #include "rangefill/range_image.h"
@@ -281,6 +282,7 @@ std::string lower_extension(const fs::path& path) {
 // The image in a file, as stored (cv::IMREAD_UNCHANGED), with one channel.
 cv::Mat decode_single_channel(const fs::path& path) {
   const std::string bytes = read_file(path);
+  if (detail::is_png(bytes)) detail::check_png(bytes, path.string());
   cv::Mat image;
   try {
     image = cv::imdecode(

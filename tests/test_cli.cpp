@@ -11,7 +11,9 @@
 #include <thread>
 
 #include <gtest/gtest.h>
+#include <zlib.h>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "rangefill/depth.h"
 #include "rangefill/holes.h"
@@ -222,6 +224,36 @@ TEST(Cli, DepthFillsOneImage) {
   fs::remove_all(dir);
 }
 
+// A PNG whose header declares 30000×30000 16-bit pixels over 2×2 pixels of data. Before the PNG
+// check, OpenCV reserved the declared 1.8 GB before finding the data missing, and libpng printed
+// its own line to stderr; now it is refused with exit 3 and one line naming it, also with the
+// address space capped at 2 GB.
+TEST(Cli, DepthImageDeclaringHugeDimensionsIsRefused) {
+  const fs::path dir = testing::temporary_directory("cli-depth-huge");
+  std::vector<uchar> png;
+  cv::imencode(".png", cv::Mat(2, 2, CV_16U, cv::Scalar(1000)), png);
+  std::string bytes(png.begin(), png.end());
+  // IHDR: width and height (big endian) at bytes 16–23, its CRC at 29–32.
+  for (int k = 0; k < 2; ++k) {
+    const unsigned value = 30000;
+    for (int b = 0; b < 4; ++b) bytes[16 + 4 * k + b] = static_cast<char>(value >> (24 - 8 * b));
+  }
+  const unsigned crc =
+      static_cast<unsigned>(::crc32(0, reinterpret_cast<const Bytef*>(bytes.data() + 12), 17));
+  for (int b = 0; b < 4; ++b) bytes[29 + b] = static_cast<char>(crc >> (24 - 8 * b));
+  write_bytes(dir / "huge.png", bytes);
+  for (const long cap : {0L, RANGEFILL_SANITIZED ? 0L : 2'000'000L}) {
+    const Outcome result =
+        run("depth " + (dir / "huge.png").string() + " -o " + (dir / "out.png").string(), cap);
+    EXPECT_EQ(result.exit_code, 3) << result.err;
+    EXPECT_EQ(result.err, "rangefill: " + (dir / "huge.png").string() +
+                              ": corrupt PNG: image data shorter than the header declares\n");
+    EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+    EXPECT_FALSE(fs::exists(dir / "out.png"));
+  }
+  fs::remove_all(dir);
+}
+
 // `rangefill depth --batch`: every image of the directory, the same bytes at any thread count,
 // unreadable files skipped and reported (exit 5), shards that partition the files, and never the
 // input directory as output.
@@ -397,7 +429,7 @@ TEST(Cli, InterruptedRepairLeavesNoTemporaryOrPartialFile) {
     for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
       EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
     }
-    if (fs::exists(out)) EXPECT_TRUE(slurp(out) == complete) << "a partial output";
+    EXPECT_TRUE(!fs::exists(out) || slurp(out) == complete) << "a partial output";
   };
 
   const auto start = std::chrono::steady_clock::now();

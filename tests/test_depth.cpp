@@ -346,6 +346,54 @@ TEST(DepthFiles, ClearErrorsForBadFiles) {
   fs::remove_all(dir);
 }
 
+// A damaged PNG is refused by the PNG check (src/png_check.h) before OpenCV sees it: one line
+// naming the file, and nothing printed by libpng (which, under OpenCV, reports to stderr).
+TEST(DepthFiles, DamagedPngsAreRefusedWithoutLibpngOutput) {
+  const fs::path dir = testing::temporary_directory("depth-png");
+  const cv::Mat depth = sample_depth(CV_16UC1);
+  write_depth_image(depth, dir / "full.png");
+  const std::string png = read_file(dir / "full.png");
+  std::string crc = png;
+  crc[png.size() - 20] ^= 0x40;  // a byte of the last IDAT chunk (IEND takes the last 12)
+  std::string type = png;
+  type[12] = '1';  // IHDR's type
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"truncated.png", png.substr(0, png.size() / 2)},
+      {"crc.png", crc},
+      {"type.png", type},
+      {"no-iend.png", png.substr(0, png.size() - 12)},
+      {"header-only.png", png.substr(0, 33) + png.substr(png.size() - 12)},
+  };
+  for (const auto& [name, bytes] : cases) {
+    SCOPED_TRACE(name);
+    write_file_atomically(bytes, dir / name);
+    ::testing::internal::CaptureStderr();
+    const std::string message = message_of([&] { read_depth_image(dir / name); });
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+    EXPECT_EQ(message.rfind((dir / name).string() + ": corrupt PNG: ", 0), 0u) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos);
+  }
+  EXPECT_TRUE(bit_identical(read_depth_image(dir / "full.png"), depth));
+  fs::remove_all(dir);
+
+  // The PNG fuzzer's corpus (tests/fuzz/corpus/png, with its findings): each file is read or
+  // refused with one line naming it, silently.
+  const fs::path corpus = fs::path(RANGEFILL_TEST_DATA).parent_path() / "fuzz" / "corpus" / "png";
+  int read = 0;
+  for (const fs::directory_entry& entry : fs::directory_iterator(corpus)) {
+    SCOPED_TRACE(entry.path().filename().string());
+    ::testing::internal::CaptureStderr();
+    const std::string message = message_of([&] { read_depth_image(entry.path()); });
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+    read += message == "no exception";
+    if (message != "no exception") {
+      EXPECT_EQ(message.rfind(entry.path().string() + ": ", 0), 0u) << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos);
+    }
+  }
+  EXPECT_EQ(read, 2);  // the 16-bit greyscale ones, interlaced or not
+}
+
 // ---------------------------------------------------------------------------------------------
 // Rendering
 
