@@ -57,9 +57,10 @@ double shifted_dot(const cv::Mat& a, const cv::Mat& b, const cv::Rect& valid, cv
   return dot(a(valid), b(valid + offset));
 }
 
-// The MAP estimate the objective scores: tight tolerances, as the implicit gradient assumes
-// ∇_u E = 0 there (foe_map ends with Newton steps, which get there).
-constexpr FoeMapOptions kTrainingMap{1000, 1e-15, 1e-12};
+// The MAP estimate the objective scores: iterations until ∇_u E vanishes, as the implicit gradient
+// assumes (foe_map ends with Newton steps, which get there); a tolerance on E would stop them
+// where E no longer changes but ∇_u E is still 1e-5.
+constexpr FoeMapOptions kTrainingMap{200, 0, 1e-11};
 
 // The loss of one sample and, when `gradient` is given, its derivatives with respect to the taps
 // (count × size², row-major) and α (count), added to `gradient`. At the MAP x*, ∇_u E(x*, θ) = 0,
