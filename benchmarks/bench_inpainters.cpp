@@ -66,6 +66,7 @@ BENCHMARK(cv_inpaint_ns)->Name("cv::inpaint NS")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(inpaint_with, ns, std::string("ns"))->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(inpaint_with, telea, std::string("telea"))->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(inpaint_with, harmonic, std::string("harmonic"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(inpaint_with, mls, std::string("mls"))->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(inpaint_with, foe, std::string("foe"))->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(inpaint_with, foe_t1, std::string("foe:/tmp/foe/t1.yml"))
     ->Unit(benchmark::kMillisecond);

@@ -9,9 +9,10 @@ namespace rangefill {
 
 void HarmonicInpainter::inpaint(cv::InputArray depth_in, cv::InputArray mask_in,
                                 cv::OutputArray out) const {
-  check_inpaint_arguments(depth_in, mask_in, name());
+  const int masked = start_inpainting(depth_in, mask_in, out, name());
+  // With the border free, every masked area reaches a known pixel unless all are masked.
+  if (masked == 0 || masked == static_cast<int>(mask_in.total())) return;
   const cv::Mat depth = depth_in.getMat(), mask = mask_in.getMat();
-  depth.copyTo(out);
   cv::Mat result = out.getMat();
   const int rows = depth.rows, cols = depth.cols;
 
@@ -22,12 +23,6 @@ void HarmonicInpainter::inpaint(cv::InputArray depth_in, cv::InputArray mask_in,
     for (int c = 0; c < cols; ++c) {
       if (mask.at<std::uint8_t>(r, c)) index.at<int>(r, c) = unknowns++;
     }
-  }
-  if (unknowns == 0) return;
-  // With the border free, every masked area reaches a known pixel unless all are masked.
-  if (unknowns == rows * cols) {
-    result.setTo(0);
-    return;
   }
 
   std::vector<Eigen::Triplet<double>> entries;

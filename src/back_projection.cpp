@@ -41,4 +41,14 @@ Patch back_project(const Mesh& mesh, const BoundaryLoop& hole, const RangeImage&
   return patch;
 }
 
+std::vector<Rgb> patch_colors(const Patch& patch, const cv::Mat& restored_color) {
+  std::vector<Rgb> colors;
+  colors.reserve(patch.pixels.size());
+  for (const cv::Point& pixel : patch.pixels) {
+    const cv::Vec3f& rgb = restored_color.at<cv::Vec3f>(pixel);
+    colors.push_back(Rgb(rgb[0], rgb[1], rgb[2]).cwiseMax(0.0f).cwiseMin(1.0f));
+  }
+  return colors;
+}
+
 }  // namespace rangefill

@@ -6,6 +6,7 @@
 
 #include "../filters/foe.h"
 #include "../filters/harmonic.h"
+#include "../filters/mls_height.h"
 #include "../filters/opencv_inpaint.h"
 #include "rangefill/errors.h"
 
@@ -34,6 +35,7 @@ const std::vector<Registration>& registry() {
        [](const InpainterOptions& o) {
          return std::make_unique<FoeInpainter>(load_foe_model(o.model));
        }},
+      {"mls", [](const InpainterOptions& o) { return std::make_unique<MlsHeightInpainter>(o); }},
   };
   return backends;
 }
@@ -61,6 +63,15 @@ std::unique_ptr<Inpainter> make_inpainter(std::string_view spec, const Inpainter
   for (const std::string& n : inpainter_names()) known += (known.empty() ? "" : ", ") + n;
   throw InvalidInput("unknown inpainter '" + std::string(spec) + "' (known: " + known +
                      ", foe:MODEL)");
+}
+
+int start_inpainting(cv::InputArray depth, cv::InputArray mask, cv::OutputArray out,
+                     const std::string& who) {
+  check_inpaint_arguments(depth, mask, who);
+  depth.copyTo(out);
+  const int masked = cv::countNonZero(mask);
+  if (masked == static_cast<int>(mask.total())) out.setTo(0);
+  return masked;
 }
 
 void check_inpaint_arguments(cv::InputArray depth, cv::InputArray mask, const std::string& who) {

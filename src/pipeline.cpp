@@ -91,6 +91,33 @@ bool fill_intersects(const SurfaceContext& surface, const Fill& fill) {
   return count_self_intersections(own, all) > 0;
 }
 
+// The trend of `values` (over the known pixels of `labels`) removed, the residual inpainted under
+// the hole mask, the trend added back. `fitted` receives the trend actually fitted.
+cv::Mat inpaint_residual(const cv::Mat& values, const cv::Mat& labels, const cv::Mat& mask,
+                         const Inpainter& inpainter, const RepairOptions& options,
+                         TrendKind& fitted) {
+  const Trend trend = fit_trend(values, labels, options.trend, options.trend_ring);
+  fitted = trend.kind;
+  const cv::Mat trend_image = trend.image(values.size());
+  cv::Mat restored;
+  inpainter.inpaint(values - trend_image, mask, restored);
+  return restored + trend_image;
+}
+
+// Wang & Oliveira, Section 4.4: the colour channels inpainted as images, each like depth.
+cv::Mat inpaint_colors(const RangeImage& image, const cv::Mat& mask, const Inpainter& inpainter,
+                       const RepairOptions& options) {
+  std::vector<cv::Mat> channels;
+  cv::split(image.color, channels);
+  for (cv::Mat& channel : channels) {
+    TrendKind fitted = TrendKind::none;
+    channel = inpaint_residual(channel, image.labels, mask, inpainter, options, fitted);
+  }
+  cv::Mat color;
+  cv::merge(channels, color);
+  return color;
+}
+
 // Sections VI–VIII on one plane: range image, trend, inpainting, back-projection, stitching.
 Fill fill_through_plane(const SurfaceContext& surface, const BoundaryLoop& hole, const Zone& zone,
                         const Frame& frame, const Inpainter& inpainter,
@@ -113,21 +140,18 @@ Fill fill_through_plane(const SurfaceContext& surface, const BoundaryLoop& hole,
   report.image_size = image.depth.size();
   report.masked_pixels = cv::countNonZero(mask);
 
-  const Trend trend = fit_trend(image, options.trend, options.trend_ring);
-  report.trend = trend.kind;
-  const cv::Mat trend_image = trend.image(image.depth.size());
-  const cv::Mat residual = image.depth - trend_image;
-
   report.stages.image += lap(stage);
 
-  cv::Mat restored;
-  inpainter.inpaint(residual, mask, restored);
-  restored += trend_image;
+  const cv::Mat restored =
+      inpaint_residual(image.depth, image.labels, mask, inpainter, options, report.trend);
+  const cv::Mat restored_color =
+      image.color.empty() ? cv::Mat() : inpaint_colors(image, mask, inpainter, options);
   report.stages.inpainting += lap(stage);
   if (options.on_images) options.on_images({report.id, image, restored});
 
   stage = Clock::now();
-  const Patch patch = back_project(mesh, hole, image, restored, options.back_projection);
+  Patch patch = back_project(mesh, hole, image, restored, options.back_projection);
+  if (!restored_color.empty()) patch.colors = patch_colors(patch, restored_color);
   Fill fill = stitch(mesh, topology, hole, frame, patch, triangulate_grid(patch));
   report.stages.stitching += lap(stage);
   const bool intersects = fill_intersects(surface, fill);
@@ -288,17 +312,41 @@ Fill fill_hole(const SurfaceContext& surface, const BoundaryLoop& hole, const In
   return std::move(*fill);
 }
 
+std::vector<Rgb> boundary_colors(const Mesh& mesh, const std::vector<int>& boundary,
+                                 const std::vector<Vec3>& points) {
+  std::vector<Rgb> colors;
+  colors.reserve(points.size());
+  for (const Vec3& point : points) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    double total = 0;
+    for (int v : boundary) {
+      const double squared = (mesh.positions[v] - point).squaredNorm();
+      if (squared == 0) {  // on a boundary vertex: its colour
+        sum = mesh.colors[v].cast<double>();
+        total = 1;
+        break;
+      }
+      sum += mesh.colors[v].cast<double>() / squared;
+      total += 1 / squared;
+    }
+    colors.push_back(total > 0 ? Rgb((sum / total).cast<float>()) : Rgb::Zero());
+  }
+  return colors;
+}
+
 std::array<long long, 3> merge_fill(Mesh& mesh, const Fill& fill, int hole_id) {
   const int boundary_size = static_cast<int>(fill.boundary.size());
-  Rgb mean_color = Rgb::Zero();
+  std::vector<Rgb> colors(fill.points.size(), Rgb::Zero());
   if (mesh.has_colors()) {
-    for (int v : fill.boundary) mean_color += mesh.colors[v];
-    mean_color /= static_cast<float>(std::max(1, boundary_size));
+    colors = fill.colors.size() == fill.points.size()
+                 ? fill.colors
+                 : boundary_colors(mesh, fill.boundary, fill.points);
   }
   std::vector<int> mesh_id(fill.boundary);
   const int first_new = mesh.vertex_count();
-  for (const Vec3& point : fill.points)
-    mesh_id.push_back(add_vertex(mesh, point, hole_id, mean_color));
+  for (size_t k = 0; k < fill.points.size(); ++k) {
+    mesh_id.push_back(add_vertex(mesh, fill.points[k], hole_id, colors[k]));
+  }
 
   std::set<std::pair<int, int>> edges;
   for (const Triangle& t : fill.triangles) {

@@ -111,6 +111,8 @@ RangeImage rasterize_zone(const Mesh& mesh, const Zone& zone, const BoundaryLoop
   // Depth buffer in double precision; the surface nearest the viewer (largest local z) wins.
   const double empty = -std::numeric_limits<double>::infinity();
   cv::Mat_<double> depth(size, empty);
+  const bool colored = mesh.has_colors();
+  cv::Mat_<cv::Vec3f> color(size, cv::Vec3f(0, 0, 0));
   for (int face : zone.faces) {
     Vec3 corners[3];
     for (int k = 0; k < 3; ++k)
@@ -148,7 +150,14 @@ RangeImage rasterize_zone(const Mesh& mesh, const Zone& zone, const BoundaryLoop
         if (!inside) continue;
         const double z =
             weights[0] * corners[0].z() + weights[1] * corners[1].z() + weights[2] * corners[2].z();
-        depth(row, col) = std::max(depth(row, col), z);
+        if (!(z > depth(row, col))) continue;
+        depth(row, col) = z;
+        if (!colored) continue;
+        Rgb rgb = Rgb::Zero();
+        for (int k = 0; k < 3; ++k) {
+          rgb += static_cast<float>(weights[k]) * mesh.colors[mesh.triangles[face][k]];
+        }
+        color(row, col) = cv::Vec3f(rgb.x(), rgb.y(), rgb.z());
       }
     }
   }
@@ -182,9 +191,12 @@ RangeImage rasterize_zone(const Mesh& mesh, const Zone& zone, const BoundaryLoop
       if (image.labels.at<std::uint8_t>(row, col) == kKnownPixel) {
         image.depth.at<float>(row, col) =
             static_cast<float>((depth(row, col) - image.depth_offset) * image.depth_scale);
+      } else {
+        color(row, col) = cv::Vec3f(0, 0, 0);
       }
     }
   }
+  if (colored) image.color = color;
   return image;
 }
 
@@ -226,6 +238,10 @@ GapFillStats fill_small_gaps(RangeImage& image) {
   };
   auto value = [&](int index) -> float& {
     return image.depth.at<float>(index / cols, index % cols);
+  };
+  const bool colored = !image.color.empty();
+  auto color = [&](int index) -> cv::Vec3f& {
+    return image.color.at<cv::Vec3f>(index / cols, index % cols);
   };
   auto for_neighbours = [&](int index, auto&& visit, bool eight) {
     const int row = index / cols, col = index % cols;
@@ -283,13 +299,17 @@ GapFillStats fill_small_gaps(RangeImage& image) {
       const int p = -negative_index;
       if (label(p) != kGapPixel || count != filled_neighbours[p]) continue;  // stale entry
       double sum = 0;
+      cv::Vec3d color_sum(0, 0, 0);
       for_neighbours(
           p,
           [&](int n) {
-            if (label(n) == kKnownPixel) sum += value(n);
+            if (label(n) != kKnownPixel) return;
+            sum += value(n);
+            if (colored) color_sum += cv::Vec3d(color(n));
           },
           true);
       value(p) = static_cast<float>(sum / count);  // eq. 10
+      if (colored) color(p) = cv::Vec3f(color_sum / count);
       label(p) = kKnownPixel;
       ++stats.pixels;
       for_neighbours(
@@ -308,12 +328,15 @@ GapFillStats fill_small_gaps(RangeImage& image) {
   cv::Mat distance, nearest;
   cv::distanceTransform(not_known, distance, nearest, cv::DIST_L2, cv::DIST_MASK_5,
                         cv::DIST_LABEL_PIXEL);
-  std::vector<float> value_of_label(static_cast<size_t>(rows) * cols + 1, 0.0f);
+  std::vector<int> known_of_label(static_cast<size_t>(rows) * cols + 1, -1);
   for (int p = 0; p < rows * cols; ++p) {
-    if (label(p) == kKnownPixel) value_of_label[nearest.at<int>(p / cols, p % cols)] = value(p);
+    if (label(p) == kKnownPixel) known_of_label[nearest.at<int>(p / cols, p % cols)] = p;
   }
   for (int p = 0; p < rows * cols; ++p) {
-    if (label(p) == kOutsidePixel) value(p) = value_of_label[nearest.at<int>(p / cols, p % cols)];
+    if (label(p) != kOutsidePixel) continue;
+    const int source = known_of_label[nearest.at<int>(p / cols, p % cols)];
+    value(p) = source < 0 ? 0.0f : value(source);
+    if (colored) color(p) = source < 0 ? cv::Vec3f(0, 0, 0) : color(source);
   }
   return stats;
 }

@@ -238,6 +238,7 @@ Fill stitch(const Mesh& mesh, const MeshTopology& topology, const BoundaryLoop& 
       if (mapped < 0) {
         mapped = boundary_size + static_cast<int>(fill.points.size());
         fill.points.push_back(patch.points[id - boundary_size]);
+        if (!patch.colors.empty()) fill.colors.push_back(patch.colors[id - boundary_size]);
       }
       id = mapped;
     }

@@ -51,9 +51,13 @@ cv::Mat Trend::image(cv::Size size) const {
 }
 
 Trend fit_trend(const RangeImage& image, TrendKind kind, double ring) {
+  return fit_trend(image.depth, image.labels, kind, ring);
+}
+
+Trend fit_trend(const cv::Mat& values, const cv::Mat& labels, TrendKind kind, double ring) {
   Trend trend;
   if (kind == TrendKind::none) return trend;
-  const cv::Mat hole = image.mask();
+  const cv::Mat hole = labels == kHolePixel;
   const int hole_pixels = cv::countNonZero(hole);
   if (hole_pixels == 0) return trend;
   const cv::Moments moments = cv::moments(hole, true);
@@ -63,26 +67,25 @@ Trend fit_trend(const RangeImage& image, TrendKind kind, double ring) {
   cv::Mat distance;
   cv::distanceTransform(hole == 0, distance, cv::DIST_L2, cv::DIST_MASK_5);
   std::vector<Eigen::Matrix<double, 6, 1>> rows;
-  std::vector<double> values;
+  std::vector<double> known;
   for (int row = 0; row < hole.rows; ++row) {
     for (int col = 0; col < hole.cols; ++col) {
-      if (image.labels.at<std::uint8_t>(row, col) != kKnownPixel ||
-          distance.at<float>(row, col) > ring) {
+      if (labels.at<std::uint8_t>(row, col) != kKnownPixel || distance.at<float>(row, col) > ring) {
         continue;
       }
       rows.push_back(monomials((col - trend.centre.x()) / trend.scale,
                                (row - trend.centre.y()) / trend.scale));
-      values.push_back(image.depth.at<float>(row, col));
+      known.push_back(values.at<float>(row, col));
     }
   }
   for (TrendKind attempt : {kind, TrendKind::plane}) {
     const int unknowns = attempt == TrendKind::quadric ? 6 : 3;
-    if (static_cast<int>(values.size()) < 2 * unknowns) continue;
-    Eigen::MatrixXd a(values.size(), unknowns);
-    Eigen::VectorXd b(values.size());
-    for (size_t i = 0; i < values.size(); ++i) {
+    if (static_cast<int>(known.size()) < 2 * unknowns) continue;
+    Eigen::MatrixXd a(known.size(), unknowns);
+    Eigen::VectorXd b(known.size());
+    for (size_t i = 0; i < known.size(); ++i) {
       a.row(i) = rows[i].head(unknowns).transpose();
-      b[i] = values[i];
+      b[i] = known[i];
     }
     const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
     if (qr.rank() < unknowns) continue;

@@ -169,6 +169,35 @@ TEST(Cli, RepairClosesASphereCapAndReportsJson) {
   fs::remove_all(dir);
 }
 
+// A file of coloured points without faces is meshed (greedy projection) and repaired; with
+// --mesher none it is refused, naming the file.
+TEST(Cli, RepairMeshesAPointCloudFirst) {
+  const fs::path dir = testing::temporary_directory("cli-cloud");
+  Mesh cloud = testing::make_sphere_cloud(1500, 0.85);
+  for (const Vec3& p : cloud.positions) cloud.colors.push_back(Rgb(0.5 + 0.5 * p.x(), 0.3f, 0.7f));
+  write_mesh(cloud, dir / "cloud.ply");
+
+  const Outcome repair = run("repair " + (dir / "cloud.ply").string() + " -o " +
+                             (dir / "out.ply").string() + " --fill-all --inpainter mls");
+  ASSERT_EQ(repair.exit_code, 0) << repair.err;
+  EXPECT_NE(repair.err.find("meshed " + std::to_string(cloud.vertex_count()) + " points"),
+            std::string::npos)
+      << repair.err;
+  const Mesh out = read_mesh(dir / "out.ply").mesh;
+  EXPECT_TRUE(check_manifold(out).closed_manifold());
+  ASSERT_EQ(out.colors.size(), out.positions.size());
+  testing::expect_bit_identical(
+      {out.positions.begin(), out.positions.begin() + cloud.vertex_count()}, cloud.positions);
+
+  const Outcome refused = run("repair " + (dir / "cloud.ply").string() + " -o " +
+                              (dir / "none.ply").string() + " --mesher none");
+  EXPECT_EQ(refused.exit_code, 3);
+  EXPECT_NE(refused.err.find("cloud.ply"), std::string::npos) << refused.err;
+  EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << refused.err;
+  EXPECT_FALSE(fs::exists(dir / "none.ply"));
+  fs::remove_all(dir);
+}
+
 // A 16-bit depth image: a plane at 1.5 m with a 9x9 hole at (row, col).
 cv::Mat depth_with_hole(int row, int col) {
   cv::Mat depth(48, 64, CV_16U, cv::Scalar(1500));

@@ -96,8 +96,10 @@ TEST(Inpaint, KnownPixelsAreReturnedBitIdentical) {
         const float a = depth.at<float>(row, col), b = out.at<float>(row, col);
         if (mask.at<std::uint8_t>(row, col)) {
           not_finite += !std::isfinite(b);
-          EXPECT_GE(b, -3.0f) << name;  // within the known range: a weighted mean
-          EXPECT_LE(b, 7.0f) << name;
+          if (name != "mls") {  // within the known range: a weighted mean (mls fits quadratics)
+            EXPECT_GE(b, -3.0f) << name;
+            EXPECT_LE(b, 7.0f) << name;
+          }
         } else {
           different += std::memcmp(&a, &b, sizeof(float)) != 0;
         }

@@ -16,6 +16,7 @@ struct Patch {
   std::vector<Vec3> points;       // world coordinates
   std::vector<cv::Point> pixels;  // (column, row) of each point
   cv::Mat index;                  // CV_32S, per pixel: index into `points`, or -1
+  std::vector<Rgb> colors;        // per point when the mesh has colours (patch_colors), else empty
 };
 
 struct BackProjectionOptions {
@@ -28,5 +29,9 @@ struct BackProjectionOptions {
 /// those at least boundary_clearance·q away from the projected hole boundary, in row-major order.
 Patch back_project(const Mesh& mesh, const BoundaryLoop& hole, const RangeImage& image,
                    const cv::Mat& restored, const BackProjectionOptions& options = {});
+
+/// The colour of each patch point: `restored_color` (CV_32FC3 RGB, the size of the image the patch
+/// came from) at its pixel, clamped to [0, 1].
+std::vector<Rgb> patch_colors(const Patch& patch, const cv::Mat& restored_color);
 
 }  // namespace rangefill

@@ -14,6 +14,8 @@ namespace rangefill {
 struct InpainterOptions {
   double radius = 5;                 // neighbourhood radius in pixels (telea, ns)
   std::string model = "roth-black";  // foe: a shipped model's name or a model file
+  double mls_alpha = 1.0 / 64;  // mls: α of eq. 6 (Wang & Oliveira), per squared pixel (README)
+  double mls_ring = 3;          // mls: known pixels within this many pixels of a hole are fitted
 };
 
 /// A back-end. inpaint(depth, mask, out): `depth` is CV_32FC1; `mask` is CV_8UC1 of the same size,
@@ -38,5 +40,11 @@ std::vector<std::string> inpainter_names();
 
 /// Checks the inpaint() preconditions above; throws InvalidInput naming `who` otherwise.
 void check_inpaint_arguments(cv::InputArray depth, cv::InputArray mask, const std::string& who);
+
+/// How a back-end's inpaint() starts: checks the arguments (check_inpaint_arguments), sets `out`
+/// to a copy of `depth` and returns the number of masked pixels. When every pixel is masked there
+/// is nothing to go by: `out` is then set to 0.
+int start_inpainting(cv::InputArray depth, cv::InputArray mask, cv::OutputArray out,
+                     const std::string& who);
 
 }  // namespace rangefill

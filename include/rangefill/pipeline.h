@@ -44,8 +44,8 @@ struct HoleReport {
   double seconds = 0;             // whole hole
   struct Stages {                 // of which (seconds; summed over the planes tried)
     double zone = 0, planes = 0;  // grow_zone, find_projections
-    double image = 0;             // visible_part, rasterize_zone, fill_small_gaps, the trend
-    double inpainting = 0;        // the back-end
+    double image = 0;             // visible_part, rasterize_zone, fill_small_gaps
+    double inpainting = 0;        // the trend and the back-end (on the colours too, if any)
     double stitching = 0;         // back_project, triangulate_grid, stitch
     double checking = 0;          // the intersection test of the fill
     double front = 0;             // the advancing front, its checks included
@@ -133,8 +133,15 @@ struct SurfaceContext {
 Fill fill_hole(const SurfaceContext& surface, const BoundaryLoop& hole, const Inpainter& inpainter,
                const RepairOptions& options, HoleReport& report);
 
+/// Colours for new points (the advancing front's, say) from the colours of the hole's boundary
+/// vertices, weighted by their inverse squared distance (Shepard). Requires mesh.has_colors().
+std::vector<Rgb> boundary_colors(const Mesh& mesh, const std::vector<int>& boundary,
+                                 const std::vector<Vec3>& points);
+
 /// Appends a fill to the mesh with provenance `hole_id` (Section IX, eq. 16) and returns its row
-/// of the restoration matrix (vertices, edges, faces added).
+/// of the restoration matrix (vertices, edges, faces added). When the mesh has colours, the new
+/// vertices take fill.colors (restored with the geometry, Wang & Oliveira 4.4) or, when the fill
+/// has none, boundary_colors.
 std::array<long long, 3> merge_fill(Mesh& mesh, const Fill& fill, int hole_id);
 
 /// Repairs every selected hole, in passes: all holes of a pass are filled against the same mesh

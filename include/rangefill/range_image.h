@@ -35,6 +35,7 @@ enum PixelLabel : std::uint8_t {
 struct RangeImage {
   cv::Mat depth;   // CV_32F: normalised depth I'_h = (I_h − d_i)·f_esc (eq. 7); 0 where unknown
   cv::Mat labels;  // CV_8U: PixelLabel per pixel
+  cv::Mat color;   // CV_32FC3: RGB interpolated like depth when the mesh has colours, else empty
   Frame frame;
   double step = 0;          // q
   double x_min = 0;         // frame x of column 0
@@ -51,7 +52,8 @@ struct RangeImage {
 /// Rasterises the front-facing faces of the zone onto the grid (depth interpolated linearly inside
 /// each triangle, the surface nearest the viewer wins), normalises depth (eq. 7–8), labels pixels
 /// whose centres lie inside the projected hole boundary as hole pixels, covered ones as known,
-/// uncovered ones reachable from the image border as outside and the rest as gaps. Throws
+/// uncovered ones reachable from the image border as outside and the rest as gaps. When the mesh
+/// has colours they are interpolated into `color` the same way (0 where unknown). Throws
 /// ProcessingError if the image would exceed options.max_pixels.
 RangeImage rasterize_zone(const Mesh& mesh, const Zone& zone, const BoundaryLoop& hole,
                           const Frame& frame, double mean_edge,
@@ -74,7 +76,8 @@ struct GapFillStats {
 /// inward diffusion: the pixel with the most filled 8-neighbours first (eq. 9; ties by row, then
 /// column) takes their mean (eq. 10). Filled gap pixels become known. A gap area that touches no
 /// known pixel becomes part of the hole. Then every outside pixel takes the value of its nearest
-/// known pixel, so that back-ends which read every unmasked pixel see no artificial step.
+/// known pixel, so that back-ends which read every unmasked pixel see no artificial step. The
+/// colour image, if any, is filled alongside, pixel for pixel in the same way.
 GapFillStats fill_small_gaps(RangeImage& image);
 
 }  // namespace rangefill

@@ -26,6 +26,7 @@ struct Fill {
   std::vector<int> boundary;
   std::vector<Vec3> points;
   std::vector<Triangle> triangles;
+  std::vector<Rgb> colors;  // of the points, when they were restored with the geometry; else empty
 };
 
 /// The triangulation of the closed polygon `loop` (3D) of least total area (Barequet–Sharir
@@ -47,8 +48,8 @@ void validate_fill(const Mesh& mesh, const MeshTopology& topology, const Boundar
 /// T2 and the union: drops grid triangles that cross or touch the projected hole boundary, then
 /// triangulates the band between the boundary and the grid's border by a constrained Delaunay
 /// triangulation in the projection plane (2.5D, CGAL) that keeps every boundary edge and every
-/// border edge, and returns T1 ∪ T2 with unused points removed, checked by validate_fill with the
-/// frame.
+/// border edge, and returns T1 ∪ T2 with unused points removed (and their colours, if the patch has
+/// any), checked by validate_fill with the frame.
 Fill stitch(const Mesh& mesh, const MeshTopology& topology, const BoundaryLoop& hole,
             const Frame& frame, const Patch& patch, const std::vector<Triangle>& grid);
 

@@ -37,4 +37,8 @@ struct Trend {
 /// unknowns, or a rank-deficient system).
 Trend fit_trend(const RangeImage& image, TrendKind kind, double ring = 6);
 
+/// The same fit to any CV_32F image `values` over the pixels of a range image's `labels` (a colour
+/// channel of RangeImage::color, for instance).
+Trend fit_trend(const cv::Mat& values, const cv::Mat& labels, TrendKind kind, double ring = 6);
+
 }  // namespace rangefill

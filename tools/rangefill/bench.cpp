@@ -25,6 +25,7 @@ struct BenchCommand {
   std::string inpainters, trends = "quadric", csv, save, filler = "plane";
   std::string fallback = "front,least-area";
   PunchOptions punch;
+  InpainterOptions inpainting;
   int threads = 1;
   bool json = false;
 };
@@ -85,6 +86,7 @@ int run_bench(const BenchCommand& command) {
           std::fprintf(stderr, "\r\033[K%s: %s", file.filename().c_str(), method.c_str());
         RepairOptions options;
         options.inpainter = inpainter;
+        options.inpainting = command.inpainting;
         options.trend = trend;
         options.threads = command.threads;
         options.filler = command.filler == "front" ? Filler::front : Filler::plane;
@@ -194,6 +196,10 @@ void add_bench_command(CLI::App& app, Runner& runner) {
   sub->add_option("--max-radius", command->punch.max_radius, "Largest hole radius, in d_m")
       ->capture_default_str();
   sub->add_option("--inpainters", command->inpainters, "Comma-separated back-ends (default: all)");
+  sub->add_option("--alpha", command->inpainting.mls_alpha,
+                  "mls: alpha of the weights exp(-alpha d^2)/d^2 (eq. 6), d in pixels")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 100.0));
   sub->add_option("--trends", command->trends, "Comma-separated trends (none, plane, quadric)")
       ->capture_default_str();
   sub->add_option("--filler", command->filler, "plane or front (see rangefill repair --help)")

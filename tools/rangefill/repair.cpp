@@ -10,6 +10,7 @@
 #include "cli.h"
 #include "rangefill/errors.h"
 #include "rangefill/pipeline.h"
+#include "rangefill/point_cloud.h"
 
 namespace rangefill::cli {
 
@@ -19,7 +20,7 @@ namespace fs = std::filesystem;
 
 struct RepairCommand {
   std::string input, output, report, debug_dir, holes = "all", trend = "quadric", filler = "plane";
-  std::string fallback = "front,least-area";
+  std::string fallback = "front,least-area", mesher = "greedy";
   bool in_place = false, json = false, ascii = false, fill_all = false;
   RepairOptions options;
 };
@@ -103,6 +104,7 @@ nlohmann::json report_json(const RepairCommand& command, const RepairResult& res
           {"inpainter", command.options.inpainter},
           {"trend", command.trend},
           {"filler", command.filler},
+          {"mesher", command.mesher},
           {"holes", holes},
           {"restoration_matrix", result.restoration_matrix},
           {"holes_left", result.holes_left},
@@ -141,7 +143,17 @@ int run_repair(RepairCommand& command) {
   command.options.skip_longest_loops = !command.fill_all;
   command.options.filler = command.filler == "front" ? Filler::front : Filler::plane;
   set_fallbacks(command.fallback, command.options);
-  const Mesh mesh = load_mesh(command.input);
+  const Mesher mesher = mesher_from_name(command.mesher);
+  Mesh mesh = load_mesh(command.input);
+  if (mesh.triangles.empty()) {
+    if (mesher == Mesher::none) {
+      throw InvalidInput(command.input +
+                         ": a point cloud without faces (--mesher greedy meshes it)");
+    }
+    mesh = mesh_point_cloud(mesh);
+    std::cerr << "rangefill: note: " << command.input << ": meshed " << mesh.vertex_count()
+              << " points into " << mesh.face_count() << " triangles (greedy projection)\n";
+  }
 
   const bool progress = stderr_is_terminal();
   int done = 0;
@@ -224,7 +236,16 @@ void add_repair_command(CLI::App& app, Runner& runner) {
          "What takes a hole the filler cannot fill: front, least-area, both (in that order), "
          "or none")
       ->capture_default_str();
+  sub->add_option("--mesher", command->mesher,
+                  "For a point cloud (points, no faces): greedy (PCL's greedy projection, "
+                  "Gopi & Krishnan) meshes it first; none refuses it")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"greedy", "none"}));
   sub->add_option("--inpainter", options.inpainter, inpainter_help())->capture_default_str();
+  sub->add_option("--alpha", options.inpainting.mls_alpha,
+                  "mls: alpha of the weights exp(-alpha d^2)/d^2 (eq. 6), d in pixels")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 100.0));
   sub->add_option("--radius", options.inpainting.radius,
                   "Neighbourhood radius in pixels (telea, ns)")
       ->capture_default_str()
