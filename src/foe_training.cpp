@@ -249,16 +249,24 @@ class CeresObjective : public ceres::FirstOrderFunction {
   const FoeObjective& objective_;
 };
 
+// Reports each iteration with the model of θ as it stands (Ceres updates θ every iteration).
 class Progress : public ceres::IterationCallback {
  public:
-  Progress(const std::function<void(int, double, double)>& report) : report_(report) {}
+  Progress(const FoeTrainingOptions& options, const FoeObjective& objective,
+           const std::vector<double>& theta)
+      : options_(options), objective_(objective), theta_(theta) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
-    if (report_) report_(summary.iteration, summary.cost, summary.cumulative_time_in_seconds);
+    if (options_.progress) {
+      options_.progress(summary.iteration, summary.cost, summary.cumulative_time_in_seconds,
+                        objective_.model(theta_));
+    }
     return ceres::SOLVER_CONTINUE;
   }
 
  private:
-  const std::function<void(int, double, double)>& report_;
+  const FoeTrainingOptions& options_;
+  const FoeObjective& objective_;
+  const std::vector<double>& theta_;
 };
 
 }  // namespace
@@ -279,8 +287,10 @@ FoeTraining train_foe(const std::vector<HoleSample>& training,
   solver.max_num_iterations = options.iterations;
   solver.function_tolerance = 1e-9;
   solver.parameter_tolerance = 1e-12;
+  if (options.max_seconds > 0) solver.max_solver_time_in_seconds = options.max_seconds;
   solver.logging_type = ceres::SILENT;
-  Progress progress(options.progress);
+  solver.update_state_every_iteration = true;
+  Progress progress(options, objective, theta);
   solver.callbacks.push_back(&progress);
   ceres::GradientProblemSolver::Summary summary;
   ceres::GradientProblem problem(new CeresObjective(objective));

@@ -41,12 +41,14 @@ class FoeObjective {
 };
 
 struct FoeTrainingOptions {
-  int size = 3;          // filters are size × size
-  int count = 8;         // at most 3 (size² − 1): the filters may be over-complete
-  int iterations = 100;  // L-BFGS iterations over θ
+  int size = 3;            // filters are size × size
+  int count = 8;           // at most 3 (size² − 1): the filters may be over-complete
+  int iterations = 100;    // L-BFGS iterations over θ
+  double max_seconds = 0;  // stop after this long (0: no limit); the result then depends on speed
   int threads = 2;
-  /// Called after each iteration with its number, the training objective and the seconds so far.
-  std::function<void(int, double, double)> progress;
+  /// Called after each iteration with its number, the training objective, the seconds so far and
+  /// the model of the current θ (a checkpoint).
+  std::function<void(int, double, double, const FoeModel&)> progress;
 };
 
 struct FoeTraining {

@@ -56,28 +56,36 @@ int run_train(const TrainCommand& command) {
   if (training.empty() || validation.empty()) {
     throw UsageError("train-foe: need training and validation patches (see --validation)");
   }
+  // The model as written: what it expects and how it was made (`state`: the losses, or a
+  // checkpoint's iteration).
+  const auto describe = [&](FoeModel model, const std::string& state) {
+    model.name = command.name;
+    model.normalisation =
+        "the residual a back-end receives in rangefill's pipeline: zone depth normalised to [0, 1] "
+        "(eq. 7-8) minus the quadric fitted to the known pixels within 3 px of the hole";
+    model.training =
+        "loss-specific: mean squared error at the masked pixels of the MAP estimate from the "
+        "harmonic fill, gradient by implicit differentiation, L-BFGS over the filters (DCT basis "
+        "without DC) and log alphas; " +
+        data + "; " + state + "; command: " + command_line();
+    return serialize_foe_model(model);
+  };
   FoeTrainingOptions options = command.training;
-  options.progress = [](int iteration, double loss, double seconds) {
+  options.progress = [&](int iteration, double loss, double seconds, const FoeModel& model) {
     std::printf("iteration %4d  loss %.6e  %7.1f s\n", iteration, loss, seconds);
     std::fflush(stdout);
+    write_file_atomically(
+        describe(model, "checkpoint after iteration " + std::to_string(iteration) +
+                            ", training loss " + std::to_string(loss)),
+        command.output);
   };
   const FoeTraining result = train_foe(training, validation, options);
-  FoeModel model = result.model;
-  model.name = command.name;
-  model.normalisation =
-      "the residual a back-end receives in rangefill's pipeline: zone depth normalised to [0, 1] "
-      "(eq. 7-8) minus the quadric fitted to the known pixels within 3 px of the hole";
-  std::ostringstream training_text;
-  training_text << "loss-specific: mean squared error at the masked pixels of the MAP estimate "
-                   "from the harmonic fill, gradient by implicit differentiation, L-BFGS over the "
-                   "filters (DCT basis without DC) and log alphas; "
-                << data << "; loss " << result.training_loss_start << " -> "
-                << result.training_loss_end << " (validation " << result.validation_loss_start
-                << " -> " << result.validation_loss_end << "), " << result.iterations
-                << " iterations, " << static_cast<int>(result.seconds)
-                << " s; command: " << command_line();
-  model.training = training_text.str();
-  write_file_atomically(serialize_foe_model(model), command.output);
+  std::ostringstream state;
+  state << "loss " << result.training_loss_start << " -> " << result.training_loss_end
+        << " (validation " << result.validation_loss_start << " -> " << result.validation_loss_end
+        << "), " << result.iterations << " iterations, " << static_cast<int>(result.seconds)
+        << " s";
+  write_file_atomically(describe(result.model, state.str()), command.output);
   std::printf("%s\nvalidation loss %.6e -> %.6e; wrote %s\n", result.stop.c_str(),
               result.validation_loss_start, result.validation_loss_end, command.output.c_str());
   return kOk;
@@ -93,7 +101,9 @@ void add_train_foe_command(CLI::App& app, Runner& runner) {
   sub->add_option("--validation", command->validation,
                   "File names of the meshes held out for validation")
       ->capture_default_str();
-  sub->add_option("-o,--output", command->output, "The model file to write (YAML)")->required();
+  sub->add_option("-o,--output", command->output,
+                  "The model file to write (YAML); rewritten after each iteration")
+      ->required();
   sub->add_option("--name", command->name, "The model's name")->capture_default_str();
   sub->add_option("--size", command->training.size, "Filter size (odd)")->capture_default_str();
   sub->add_option("--count", command->training.count, "Number of filters")->capture_default_str();
@@ -104,6 +114,9 @@ void add_train_foe_command(CLI::App& app, Runner& runner) {
   sub->add_option("--patch-size", command->samples.patches.size, "Patch size in pixels")
       ->capture_default_str();
   sub->add_option("--seed", command->samples.patches.seed, "Seed of patches and masks")
+      ->capture_default_str();
+  sub->add_option("--max-seconds", command->training.max_seconds,
+                  "Stop after this many seconds (0: no limit)")
       ->capture_default_str();
   sub->add_option("--threads", command->training.threads, "Threads")->capture_default_str();
   sub->callback([command, &runner] { runner = [command] { return run_train(*command); }; });
