@@ -6,8 +6,8 @@
 #include <limits>
 #include <sstream>
 
-#include <Eigen/Sparse>
 #include <Eigen/CholmodSupport>
+#include <Eigen/Sparse>
 #include <opencv2/imgproc.hpp>
 
 #include "../filters/harmonic.h"
@@ -331,15 +331,16 @@ struct Unknowns {
   cv::Mat index;  // CV_32S
 };
 
-// The matrices of quadratic upper bounds of E over the unknowns: A = Σ_i Σ_c w_ic J_ic J_icᵀ. As
+// The matrices A = Σ_i Σ_c w_ic J_ic J_icᵀ over the unknowns that inference factorises. As
 // ρ(y) = log(1 + y²/2) has ρ'' ≤ 1, w = α_i bounds E around every point (A is then the Hessian of
 // the Gaussian field with the same filters); as ρ is concave in y², the half-quadratic weights
 // w = α_i / (1 + y²/2) at the current responses bound it more tightly around the current point
-// (Geman & Yang). Either way x − A⁻¹∇E lowers E. Entries A(p, p + d) = Σ_i Σ_t w_i(p − t) K_i(t)
-// K_i(t + d), with K_i the scaled kernels, over the (4r + 1)² offsets d of the stencil.
-class BoundMatrix {
+// (Geman & Yang): either way x − A⁻¹∇E lowers E. With w = α_i ρ''(y), A is the Hessian. Entries
+// A(p, p + d) = Σ_i Σ_t w_i(p − t) K_i(t) K_i(t + d), with K_i the scaled kernels, over the
+// (4r + 1)² offsets d of the stencil.
+class FilterMatrix {
  public:
-  BoundMatrix(const FoeModel& model, const Unknowns& unknowns) : unknowns_(unknowns) {
+  FilterMatrix(const FoeModel& model, const Unknowns& unknowns) : unknowns_(unknowns) {
     const int r = model.size / 2, count = model.count();
     count_ = count;
     // For each stencil offset d, the taps t with t + d in the kernel and the products
@@ -366,7 +367,7 @@ class BoundMatrix {
       for (int d = 0; d < side * side; ++d) {
         const cv::Point p = unknowns.pixels[column] + cv::Point(d % side - 2 * r, d / side - 2 * r);
         const int row = unknowns.at(p);
-        if (row >= 0) {
+        if (row >= column) {  // the lower triangle: A is symmetric
           pattern.emplace_back(row, column, 1.0);
           entry_offsets_.push_back(d);
         }
@@ -377,7 +378,8 @@ class BoundMatrix {
     matrix_.makeCompressed();
   }
 
-  // A for clique weights (pixel-major, as in CliqueWeights), with `ridge` added to the diagonal.
+  // The lower triangle of A for clique weights (pixel-major, as in CliqueWeights), with `ridge`
+  // added to the diagonal.
   const Eigen::SparseMatrix<double>& assemble(const std::vector<double>& weights, double ridge) {
     const int cols = unknowns_.index.cols;
     double* values = matrix_.valuePtr();
@@ -441,7 +443,7 @@ struct InferenceProblem {
       : unknowns(mask), runs(cliques_touching(mask, model.size / 2)), matrices(model, unknowns) {}
   Unknowns unknowns;
   std::vector<CliqueRun> runs;
-  BoundMatrix matrices;
+  FilterMatrix matrices;
 };
 
 // Keeps A definite where the filters cannot see an unknown (a mask covering the image).
@@ -472,14 +474,14 @@ cv::Mat foe_map(const FoeModel& model, const cv::Mat& image, const cv::Mat& mask
     }
   }
   // CHOLMOD's supernodal Cholesky: on the (4r + 1)²-point stencils of 5×5 filters it factorises
-  // nine times faster than Eigen's simplicial LDLᵀ (256² pixels, 15 % unknown: 0.2 s against 1.8 s).
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> solver;
+  // nine times faster than Eigen's simplicial LDLᵀ (256² pixels, 15 % unknown: 0.2 s against 1.8
+  // s).
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
   solver.cholmod().print = 0;  // a matrix that is not positive definite is an answer, not an error
   solver.compute(problem.matrices.assemble(gaussian, ridge));
-  auto step_from = [&](const cv::Mat& from, const Eigen::VectorXd& gradient) {
-    const Eigen::VectorXd step = solver.solve(gradient);
+  auto moved = [&](const cv::Mat& from, const Eigen::VectorXd& step, double length) {
     cv::Mat to = from.clone();
-    for (size_t k = 0; k < unknowns.size(); ++k) to.at<double>(unknowns[k]) -= step[k];
+    for (size_t k = 0; k < unknowns.size(); ++k) to.at<double>(unknowns[k]) -= length * step[k];
     return to;
   };
   // The start: the harmonic fill. Its maximum principle keeps it within the known values around
@@ -490,13 +492,15 @@ cv::Mat foe_map(const FoeModel& model, const cv::Mat& image, const cv::Mat& mask
     HarmonicInpainter().inpaint(image32, mask, start32);
     for (const cv::Point& p : unknowns) x.at<double>(p) = start32.at<float>(p);
   }
-  // Then steps x ← x − M⁻¹∇E, each factorisation reused while its steps gain at least twice what
-  // the next one does. M starts as the Gaussian bound (ρ'' ≤ 1: it holds everywhere). When
-  // progress slows, M becomes the Hessian at the current point if it is positive definite (Newton:
-  // quadratic convergence near the minimum), else the half-quadratic bound there (Geman & Yang).
-  // A step that would raise E is retried with a matrix made at x, the half-quadratic bound last,
-  // which cannot raise E. The iterations end when the steps to come are predicted to gain less
-  // than the tolerance, or when a matrix made at x gains less.
+  // Then steps x ← x − t M⁻¹∇E, each factorisation reused while its steps gain at least twice
+  // what the next one does. M starts as the Gaussian bound (ρ'' ≤ 1: it holds everywhere). When
+  // progress slows, M becomes the Hessian at the current point (Newton) with the curvature of each
+  // clique kept above a tenth of its half-quadratic weight, so that M stays positive definite
+  // where E is not convex; near the minimum (∇E below 1e-3 of its start), the Hessian itself when
+  // it is positive definite (quadratic convergence). A Newton step that would raise
+  // E is halved twice, then replaced by a step with the half-quadratic bound at x (Geman & Yang),
+  // which cannot raise E. The iterations end when the steps to come are predicted to gain less than
+  // the tolerance, or when a matrix made at x gains less.
   enum class Matrix { bound, other } kind = Matrix::bound;
   bool fresh = false;  // M was made at x
   Evaluation current = evaluate(model, x, problem.runs, problem.unknowns);
@@ -505,14 +509,20 @@ cv::Mat foe_map(const FoeModel& model, const cv::Mat& image, const cv::Mat& mask
     kind = Matrix::bound;
     fresh = true;
   };
+  const double start_gradient = current.gradient.lpNorm<Eigen::Infinity>();
   auto refresh = [&] {
-    solver.factorize(problem.matrices.assemble(current.weights.curvature, ridge));
-    if (solver.info() == Eigen::Success) {
-      kind = Matrix::other;
-      fresh = true;
-    } else {
-      refresh_with_bound();
+    kind = Matrix::other;
+    fresh = true;
+    if (current.gradient.lpNorm<Eigen::Infinity>() < 1e-3 * start_gradient) {
+      solver.factorize(problem.matrices.assemble(current.weights.curvature, ridge));
+      if (solver.info() == Eigen::Success) return;
     }
+    std::vector<double> damped = current.weights.curvature;
+    for (size_t k = 0; k < damped.size(); ++k) {
+      damped[k] = std::max(damped[k], 0.1 * current.weights.half_quadratic[k]);
+    }
+    solver.factorize(problem.matrices.assemble(damped, ridge));
+    if (solver.info() != Eigen::Success) refresh_with_bound();
   };
   double last_gain = std::numeric_limits<double>::infinity();
   for (int iteration = 0; iteration < options.max_iterations; ++iteration) {
@@ -520,16 +530,24 @@ cv::Mat foe_map(const FoeModel& model, const cv::Mat& image, const cv::Mat& mask
         current.gradient.lpNorm<Eigen::Infinity>() <= options.gradient_tolerance) {
       break;
     }
-    const cv::Mat trial = step_from(x, current.gradient);
-    Evaluation next = evaluate(model, trial, problem.runs, problem.unknowns);
-    const double gain = current.energy - next.energy;
+    const Eigen::VectorXd step = solver.solve(current.gradient);
     // Changes of E below `resolution` are rounding: there a step that shrinks ∇E is taken, and
     // gains tell nothing of the rate of convergence.
     const double resolution =
         64 * std::numeric_limits<double>::epsilon() * std::abs(current.energy);
-    const bool flat = gain >= -resolution && next.gradient.lpNorm<Eigen::Infinity>() <
-                                                 current.gradient.lpNorm<Eigen::Infinity>();
-    if (!(gain >= 0) && !flat) {  // a stale matrix or a Newton step too long
+    cv::Mat trial;
+    Evaluation next;
+    double gain = 0;
+    bool taken = false;
+    for (double length = 1; length >= 0.25 && !taken; length /= 2) {
+      trial = moved(x, step, length);
+      next = evaluate(model, trial, problem.runs, problem.unknowns);
+      gain = current.energy - next.energy;
+      taken = gain >= 0 || (gain >= -resolution && next.gradient.lpNorm<Eigen::Infinity>() <
+                                                       current.gradient.lpNorm<Eigen::Infinity>());
+      if (!(fresh && kind == Matrix::other)) break;  // only a fresh Newton step is shortened
+    }
+    if (!taken) {  // a stale matrix, or a Newton step in the wrong place
       if (fresh && kind == Matrix::bound) break;
       if (fresh) {
         refresh_with_bound();
@@ -538,6 +556,9 @@ cv::Mat foe_map(const FoeModel& model, const cv::Mat& image, const cv::Mat& mask
       }
       continue;
     }
+    // Below the resolution of E, progress is what ∇E loses.
+    const bool gradient_halved =
+        next.gradient.lpNorm<Eigen::Infinity>() < 0.5 * current.gradient.lpNorm<Eigen::Infinity>();
     x = trial;
     current = std::move(next);
     // Converging linearly at rate ρ = gain / last gain, the steps to come gain gain·ρ / (1 − ρ).
@@ -545,7 +566,7 @@ cv::Mat foe_map(const FoeModel& model, const cv::Mat& image, const cv::Mat& mask
     const bool have_rate = std::isfinite(last_gain) && gain > resolution;
     const double rate = have_rate ? gain / last_gain : 0;
     if (have_rate && rate < 0.5 && gain * rate / (1 - rate) <= tolerance) break;
-    const bool small = gain <= tolerance;
+    const bool small = gain <= tolerance && !(gain <= resolution && gradient_halved);
     if (small && fresh) break;
     if (kind == Matrix::bound && fresh) kind = Matrix::other;  // not a bound at the new x
     fresh = false;
@@ -561,7 +582,7 @@ Eigen::SparseMatrix<double> foe_hessian_of_unknowns(const FoeModel& model, const
   CV_Assert(mask.type() == CV_8UC1 && mask.size() == x.size());
   InferenceProblem problem(model, mask);
   const Evaluation at_x = evaluate(model, x, problem.runs, problem.unknowns);
-  return problem.matrices.assemble(at_x.weights.curvature, 0);
+  return problem.matrices.assemble(at_x.weights.curvature, 0).selfadjointView<Eigen::Lower>();
 }
 
 }  // namespace rangefill
