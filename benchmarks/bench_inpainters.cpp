@@ -68,8 +68,6 @@ BENCHMARK_CAPTURE(inpaint_with, telea, std::string("telea"))->Unit(benchmark::kM
 BENCHMARK_CAPTURE(inpaint_with, harmonic, std::string("harmonic"))->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(inpaint_with, mls, std::string("mls"))->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(inpaint_with, foe, std::string("foe"))->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(inpaint_with, foe_t1, std::string("foe:/tmp/foe/t1.yml"))
-    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(inpaint_with, foe_roth_black, std::string("foe:roth-black"))
     ->Unit(benchmark::kMillisecond);
 
