@@ -1,11 +1,14 @@
 #include "rangefill/punch.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
+#include <numeric>
 #include <queue>
 #include <random>
 #include <unordered_map>
 
+#include "rangefill/curvature.h"
 #include "rangefill/errors.h"
 #include "rangefill/topology.h"
 
@@ -13,30 +16,59 @@ namespace rangefill {
 
 namespace {
 
+constexpr double kPi = 3.14159265358979323846;
+
 // Uniform in [0, 1) from 53 random bits: the same on every standard library.
 double uniform01(std::mt19937_64& random) {
   return (random() >> 11) * 0x1.0p-53;
 }
 
-// Dijkstra distances along edges from `source`, for vertices closer than `limit`.
-std::unordered_map<int, double> distances_within(const Mesh& mesh, const std::vector<int>& offsets,
-                                                 const std::vector<int>& neighbours, int source,
-                                                 double limit) {
-  std::unordered_map<int, double> distance{{source, 0.0}};
+// The mesh's edges as adjacency lists (CSR).
+struct EdgeGraph {
+  std::vector<int> offsets, neighbours;
+};
+
+EdgeGraph edge_graph(const Mesh& mesh, const MeshTopology& topology) {
+  EdgeGraph graph;
+  graph.offsets.assign(mesh.vertex_count() + 1, 0);
+  for (const Edge& edge : topology.edges) {
+    ++graph.offsets[edge.v0 + 1];
+    ++graph.offsets[edge.v1 + 1];
+  }
+  std::partial_sum(graph.offsets.begin(), graph.offsets.end(), graph.offsets.begin());
+  graph.neighbours.resize(graph.offsets.back());
+  std::vector<int> cursor(graph.offsets.begin(), graph.offsets.end() - 1);
+  for (const Edge& edge : topology.edges) {
+    graph.neighbours[cursor[edge.v0]++] = edge.v1;
+    graph.neighbours[cursor[edge.v1]++] = edge.v0;
+  }
+  return graph;
+}
+
+// Dijkstra distances along edges from the nearest of `sources`, for vertices closer than `limit`;
+// `previous`, when given, receives the vertex each was reached from.
+std::unordered_map<int, double> distances_within(const Mesh& mesh, const EdgeGraph& graph,
+                                                 const std::vector<int>& sources, double limit,
+                                                 std::unordered_map<int, int>* previous = nullptr) {
+  std::unordered_map<int, double> distance;
   using Entry = std::pair<double, int>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
-  queue.emplace(0.0, source);
+  for (int source : sources) {
+    distance[source] = 0.0;
+    queue.emplace(0.0, source);
+  }
   while (!queue.empty()) {
     const auto [d, v] = queue.top();
     queue.pop();
     if (d > distance.at(v)) continue;
-    for (int i = offsets[v]; i < offsets[v + 1]; ++i) {
-      const int w = neighbours[i];
+    for (int i = graph.offsets[v]; i < graph.offsets[v + 1]; ++i) {
+      const int w = graph.neighbours[i];
       const double through = d + (mesh.positions[v] - mesh.positions[w]).norm();
       if (through >= limit) continue;
       const auto found = distance.find(w);
       if (found == distance.end() || through < found->second) {
         distance[w] = through;
+        if (previous) (*previous)[w] = v;
         queue.emplace(through, w);
       }
     }
@@ -83,6 +115,98 @@ bool is_simple_disk(const Mesh& mesh, const std::vector<int>& faces) {
   return length == border.size();
 }
 
+// The faces around the vertices closer than `radius` whose three vertices all are, ascending.
+std::vector<int> faces_within(const Mesh& mesh, const MeshTopology& topology,
+                              const std::unordered_map<int, double>& distance, double radius) {
+  std::vector<int> region;
+  for (const auto& [v, d] : distance) {
+    if (d >= radius) continue;
+    for (int i = topology.faces_of_vertex_begin(v); i < topology.faces_of_vertex_end(v); ++i) {
+      const Triangle& t = mesh.triangles[topology.vertex_faces[i]];
+      const bool inside = std::all_of(t.begin(), t.end(), [&](int w) {
+        const auto found = distance.find(w);
+        return found != distance.end() && found->second < radius;
+      });
+      if (inside) region.push_back(topology.vertex_faces[i]);
+    }
+  }
+  std::sort(region.begin(), region.end());
+  region.erase(std::unique(region.begin(), region.end()), region.end());
+  return region;
+}
+
+double area_of(const Mesh& mesh, const std::vector<int>& faces) {
+  double area = 0;
+  for (int face : faces) area += 0.5 * triangle_cross(mesh, face).norm();
+  return area;
+}
+
+// What a region is classified by: the curvature of every vertex and the dihedral angle of every
+// edge of the input, computed once.
+struct SurfaceShape {
+  const Mesh& mesh;
+  const MeshTopology& topology;
+  VertexCurvature curvature;
+  std::vector<double> dihedral;
+};
+
+// Sets the hole's area, bending, curvature class and sharp-feature flag from its removed faces.
+void classify(const SurfaceShape& surface, const PunchOptions& options, double mean_edge,
+              PunchedHole& hole) {
+  const std::vector<int>& faces = hole.removed_faces;
+  hole.area = area_of(surface.mesh, faces);
+  std::vector<int> vertices;
+  for (int face : faces) {
+    for (int v : surface.mesh.triangles[face]) vertices.push_back(v);
+  }
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  double weighted = 0, weight = 0;
+  for (int v : vertices) {
+    weighted += surface.curvature.area[v] * surface.curvature.max_principal(v);
+    weight += surface.curvature.area[v];
+  }
+  hole.bending = weight > 0 ? weighted / weight * std::sqrt(hole.area / kPi) : 0;
+  hole.curvature = hole.bending < options.low_bending    ? CurvatureClass::low
+                   : hole.bending < options.high_bending ? CurvatureClass::medium
+                                                         : CurvatureClass::high;
+  // Sharp edges between two faces of the region (each edge once, from its lower half-edge).
+  const double sharp = options.sharp_angle * kPi / 180;
+  double sharp_length = 0;
+  for (int face : faces) {
+    for (int h = 3 * face; h < 3 * face + 3; ++h) {
+      const int opposite = surface.topology.opposite[h];
+      if (opposite < h || !std::binary_search(faces.begin(), faces.end(), opposite / 3)) continue;
+      if (surface.dihedral[surface.topology.halfedge_edge[h]] < sharp) continue;
+      const Edge& edge = surface.topology.edges[surface.topology.halfedge_edge[h]];
+      sharp_length += (surface.mesh.positions[edge.v0] - surface.mesh.positions[edge.v1]).norm();
+    }
+  }
+  hole.sharp_feature = sharp_length >= options.sharp_length * mean_edge;
+}
+
+// Whether the hole is of kind `kind` of (low, medium, high curvature, sharp feature).
+bool of_kind(const PunchedHole& hole, int kind) {
+  return kind == 3 ? hole.sharp_feature : static_cast<int>(hole.curvature) == kind;
+}
+
+void check_options(const PunchOptions& options) {
+  if (!(options.min_radius > 0 && options.max_radius >= options.min_radius)) {
+    throw InvalidInput("punch: radii must satisfy 0 < min_radius <= max_radius");
+  }
+  if (options.shapes.empty()) throw InvalidInput("punch: no hole shape given");
+  if (!(options.min_aspect > 0 && options.max_aspect >= options.min_aspect &&
+        options.max_aspect <= 1)) {
+    throw InvalidInput("punch: aspects must satisfy 0 < min_aspect <= max_aspect <= 1");
+  }
+  if (!(options.low_bending >= 0 && options.high_bending >= options.low_bending)) {
+    throw InvalidInput("punch: bending thresholds must satisfy 0 <= low <= high");
+  }
+  if (!(options.separation >= 0 && options.sharp_angle >= 0 && options.sharp_length >= 0)) {
+    throw InvalidInput("punch: separation, sharp angle and sharp length must not be negative");
+  }
+}
+
 }  // namespace
 
 std::uint64_t seed_for_mesh(std::uint64_t seed, const std::string& name) {
@@ -112,65 +236,84 @@ Mesh extract_faces(const Mesh& mesh, const std::vector<int>& faces) {
 
 PunchResult punch_holes(const Mesh& mesh, const PunchOptions& options) {
   if (mesh.vertex_count() == 0) throw InvalidInput("punch: the mesh has no vertices");
-  if (!(options.min_radius > 0 && options.max_radius >= options.min_radius)) {
-    throw InvalidInput("punch: radii must satisfy 0 < min_radius <= max_radius");
-  }
+  check_options(options);
   const MeshTopology topology = build_topology(mesh);
   const double mean_edge = mean_edge_length(mesh, topology);
-  std::vector<int> offsets(mesh.vertex_count() + 1, 0), neighbours;
-  for (const Edge& edge : topology.edges) {
-    ++offsets[edge.v0 + 1];
-    ++offsets[edge.v1 + 1];
-  }
-  std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
-  neighbours.resize(offsets.back());
-  {
-    std::vector<int> cursor(offsets.begin(), offsets.end() - 1);
-    for (const Edge& edge : topology.edges) {
-      neighbours[cursor[edge.v0]++] = edge.v1;
-      neighbours[cursor[edge.v1]++] = edge.v0;
-    }
-  }
+  const EdgeGraph graph = edge_graph(mesh, topology);
+  const SurfaceShape surface{mesh, topology, vertex_curvature(mesh, topology),
+                             dihedral_angles(mesh, topology)};
 
   std::mt19937_64 random(options.seed);
-  std::vector<char> face_removed(mesh.face_count(), 0), vertex_touched(mesh.vertex_count(), 0);
-  PunchResult result;
+  std::vector<char> vertex_touched(mesh.vertex_count(), 0);
+  std::vector<PunchedHole> holes;
   for (int hole = 0; hole < options.holes; ++hole) {
+    const HoleShape shape = options.shapes[(hole + hole / 4) % options.shapes.size()];
     for (int attempt = 0; attempt < options.attempts; ++attempt) {
-      const int centre =
+      PunchedHole candidate;
+      candidate.shape = shape;
+      candidate.centre =
           static_cast<int>(random() % static_cast<std::uint64_t>(mesh.vertex_count()));
-      const double radius =
+      const double size =
           (options.min_radius + (options.max_radius - options.min_radius) * uniform01(random)) *
           mean_edge;
-      const auto distance = distances_within(mesh, offsets, neighbours, centre,
-                                             radius + options.separation * mean_edge);
-      bool near_other_hole = false;
-      std::vector<int> region;
-      for (const auto& [v, d] : distance) {
-        near_other_hole |= vertex_touched[v] != 0;
-        if (d >= radius) continue;
-        for (int i = topology.faces_of_vertex_begin(v); i < topology.faces_of_vertex_end(v); ++i) {
-          const Triangle& t = mesh.triangles[topology.vertex_faces[i]];
-          const bool inside = std::all_of(t.begin(), t.end(), [&](int w) {
-            const auto found = distance.find(w);
-            return found != distance.end() && found->second < radius;
-          });
-          if (inside) region.push_back(topology.vertex_faces[i]);
+      candidate.radius = size;
+      std::vector<int> path = {candidate.centre};
+      if (shape == HoleShape::elongated) {
+        const double aspect =
+            options.min_aspect + (options.max_aspect - options.min_aspect) * uniform01(random);
+        candidate.radius = std::max(aspect * size, 2 * mean_edge);
+        const double length = 2 * (size - candidate.radius);
+        std::unordered_map<int, int> previous;
+        const auto from_start =
+            distances_within(mesh, graph, path, std::max(length, 0.0), &previous);
+        std::vector<int> ends;  // vertices at 80–100 % of the length
+        for (const auto& [v, d] : from_start) {
+          if (d >= 0.8 * length) ends.push_back(v);
         }
+        if (ends.empty()) continue;
+        std::sort(ends.begin(), ends.end());
+        const int end = ends[random() % ends.size()];
+        candidate.length = from_start.at(end);
+        for (int v = end; v != candidate.centre; v = previous.at(v)) path.push_back(v);
+        candidate.centre = path[path.size() / 2];
       }
-      if (near_other_hole || region.empty()) continue;
-      std::sort(region.begin(), region.end());
-      region.erase(std::unique(region.begin(), region.end()), region.end());
-      if (!is_simple_disk(mesh, region)) continue;
-      for (int face : region) {
-        face_removed[face] = 1;
+      const auto distance =
+          distances_within(mesh, graph, path, candidate.radius + options.separation * mean_edge);
+      const bool near_other_hole =
+          std::any_of(distance.begin(), distance.end(),
+                      [&](const auto& entry) { return vertex_touched[entry.first] != 0; });
+      candidate.removed_faces = faces_within(mesh, topology, distance, candidate.radius);
+      if (near_other_hole || candidate.removed_faces.empty()) continue;
+      if (!is_simple_disk(mesh, candidate.removed_faces)) continue;
+      classify(surface, options, mean_edge, candidate);
+      if (options.spread && attempt < options.attempts / 2 && !of_kind(candidate, hole % 4)) {
+        continue;
+      }
+      for (int face : candidate.removed_faces) {
         for (int v : mesh.triangles[face]) vertex_touched[v] = 1;
       }
-      result.holes.push_back({centre, radius, std::move(region)});
+      holes.push_back(std::move(candidate));
       break;
     }
   }
+  return remove_holes(mesh, std::move(holes));
+}
 
+PunchResult remove_holes(const Mesh& mesh, std::vector<PunchedHole> holes) {
+  std::vector<char> face_removed(mesh.face_count(), 0);
+  for (PunchedHole& hole : holes) {
+    std::sort(hole.removed_faces.begin(), hole.removed_faces.end());
+    for (int face : hole.removed_faces) {
+      if (face < 0 || face >= mesh.face_count() || face_removed[face]) {
+        throw InvalidInput("punch: face " + std::to_string(face) +
+                           " is out of range or in two holes");
+      }
+      face_removed[face] = 1;
+    }
+    hole.area = area_of(mesh, hole.removed_faces);
+  }
+  PunchResult result;
+  result.holes = std::move(holes);
   std::vector<int> kept_faces;
   for (int f = 0; f < mesh.face_count(); ++f) {
     if (!face_removed[f]) kept_faces.push_back(f);
@@ -196,6 +339,28 @@ PunchResult punch_holes(const Mesh& mesh, const PunchOptions& options) {
   result.mesh = make_mesh(std::move(positions), std::move(triangles));
   result.mesh.storage = mesh.storage;
   return result;
+}
+
+std::string shape_name(HoleShape shape) {
+  return shape == HoleShape::disk ? "disk" : "elongated";
+}
+
+HoleShape shape_from_name(const std::string& name) {
+  if (name == "disk") return HoleShape::disk;
+  if (name == "elongated") return HoleShape::elongated;
+  throw InvalidInput("punch: unknown hole shape '" + name + "' (expected disk or elongated)");
+}
+
+std::string curvature_name(CurvatureClass curvature) {
+  switch (curvature) {
+    case CurvatureClass::low:
+      return "low";
+    case CurvatureClass::medium:
+      return "medium";
+    case CurvatureClass::high:
+      break;
+  }
+  return "high";
 }
 
 }  // namespace rangefill

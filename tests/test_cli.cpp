@@ -4,6 +4,7 @@
 #include <spawn.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -336,6 +337,62 @@ TEST(Cli, DepthBenchMeasuresABackEnd) {
   EXPECT_NE(bench.out.find("fill_depth harmonic"), std::string::npos) << bench.out;
   EXPECT_NE(bench.out.find("cv::inpaint telea, all invalid masked"), std::string::npos);
   EXPECT_EQ(run("depth-bench --inpainters harmonic").exit_code, 2);
+  fs::remove_all(dir);
+}
+
+// `rangefill bench` on a sphere with two back-ends and a baseline, each hole and method in a
+// process of its own: the summary as JSON; in --out a CSV row per hole and method, the summary, the
+// tables, three plots and the report with each hole's images; the same numbers at one and two
+// threads; a timeout fails every method on every hole, and the run still ends with its tables.
+TEST(Cli, BenchComparesMethodsAndWritesItsReport) {
+  const fs::path dir = testing::temporary_directory("cli-bench");
+  write_mesh(testing::make_sphere(16), dir / "sphere.ply");
+  const std::string common = "bench --meshes " + (dir / "sphere.ply").string() +
+                             " --holes-per-mesh 3 --seed 4 --max-radius 6 --inpainters "
+                             "harmonic,ns --baselines cgal-triangulate --json";
+  const Outcome one = run(common + " --out " + (dir / "one").string());
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  nlohmann::json summary = nlohmann::json::parse(one.out);
+  EXPECT_EQ(summary["method_order"],
+            (std::vector<std::string>{"harmonic", "ns", "cgal-triangulate"}));
+  EXPECT_EQ(summary["holes"].size(), 3u);
+  for (const std::string method : {"harmonic", "ns", "cgal-triangulate"}) {
+    EXPECT_EQ(summary["methods"][method]["filled"], 3) << method;
+    EXPECT_LT(summary["methods"][method]["hausdorff_max"], 2) << method;
+    double shares = 0;
+    for (double share : summary["methods"][method]["rank_shares"]) shares += share;
+    EXPECT_NEAR(shares, 1, 1e-12) << method;
+  }
+  EXPECT_GT(summary["methods"]["cgal-triangulate"]["edge_ratio_sd"], 0);
+  const std::string csv = slurp(dir / "one" / "holes.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 3 * 3);
+  EXPECT_NE(slurp(dir / "one" / "tables.md").find("(Table 3)"), std::string::npos);
+  const std::string html = slurp(dir / "one" / "report.html");
+  EXPECT_NE(html.find("<svg"), std::string::npos);
+  size_t images = 0;
+  for (size_t at = html.find("data:image/png;base64,"); at != std::string::npos;
+       at = html.find("data:image/png;base64,", at + 1)) {
+    ++images;
+  }
+  EXPECT_EQ(images, 3u * 4u);  // per hole: range image, mask, two restorations
+  for (const char* plot : {"hausdorff-vs-area.svg", "ranks-by-area.svg", "ranks-by-curvature.svg"})
+    EXPECT_EQ(slurp(dir / "one" / plot).rfind("<svg", 0), 0u) << plot;
+
+  const Outcome two = run(common + " --threads 2");
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  nlohmann::json again = nlohmann::json::parse(two.out);
+  for (nlohmann::json* document : {&summary, &again}) {
+    for (auto& [method, figures] : (*document)["methods"].items())
+      figures.erase("seconds_per_hole_median");
+  }
+  EXPECT_EQ(summary, again);
+
+  const Outcome late = run(common + " --timeout 0.000001 --csv " + (dir / "late.csv").string());
+  ASSERT_EQ(late.exit_code, 0) << late.err;
+  EXPECT_EQ(nlohmann::json::parse(late.out)["methods"]["ns"]["filled"], 0);
+  EXPECT_NE(slurp(dir / "late.csv").find("timed out after 1e-06 s"), std::string::npos);
+  EXPECT_EQ(run(common + " --baselines meshlab").exit_code, 2);
+  EXPECT_EQ(run(common + " --shapes square").exit_code, 2);
   fs::remove_all(dir);
 }
 

@@ -1,17 +1,17 @@
-// rangefill bench: punch holes into closed meshes, repair them with each back-end, and measure.
-#include <algorithm>
+// rangefill bench: punch holes into closed meshes, fill each with every back-end and baseline (one
+// child process per hole and method), and measure as Pérez et al., Section X.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iostream>
-#include <map>
-#include <numeric>
 #include <sstream>
 
+#include <opencv2/imgcodecs.hpp>
+
+#include "bench_report.h"
 #include "cli.h"
+#include "isolation.h"
 #include "rangefill/errors.h"
 #include "rangefill/evaluation.h"
-#include "rangefill/pipeline.h"
 #include "rangefill/punch.h"
 
 namespace rangefill::cli {
@@ -19,164 +19,378 @@ namespace rangefill::cli {
 namespace {
 
 namespace fs = std::filesystem;
+using nlohmann::json;
 
 struct BenchCommand {
   std::vector<std::string> meshes;
-  std::string inpainters, trends = "quadric", csv, save, filler = "plane";
-  std::string fallback = "front,least-area";
-  PunchOptions punch;
+  std::string inpainters, baselines, trends = "quadric", csv, save, out, filler = "plane";
+  std::string fallback = "front,least-area", shapes = "disk,elongated";
+  PunchOptions punch = [] {
+    PunchOptions options;
+    options.max_radius = 20;
+    options.spread = true;
+    return options;
+  }();
   InpainterOptions inpainting;
-  int threads = 1;
+  int threads = 1, area_classes = 10;
+  double timeout = 300, tie = 0.01;
   bool json = false;
 };
 
-struct Row {
-  std::string mesh, method;
-  HoleScore score;
-  double mean_edge;
+// A mesh with its holes punched.
+struct Punched {
+  std::string name;
+  Mesh original;
+  PunchResult punched;
+  std::vector<int> loops;  // punched_loops
+  double mean_edge = 0;
 };
 
-struct MethodSummary {
-  int holes = 0, filled = 0, meshes = 0, closed_meshes = 0, self_intersections = 0;
-  std::vector<double> hausdorff, mean_distance, edge_ratio, seconds;
-};
+std::string base64(const std::vector<uchar>& bytes) {
+  static const char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string text;
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    const unsigned n = bytes[i] << 16 | (i + 1 < bytes.size() ? bytes[i + 1] << 8 : 0) |
+                       (i + 2 < bytes.size() ? bytes[i + 2] : 0);
+    text += digits[n >> 18 & 63];
+    text += digits[n >> 12 & 63];
+    text += i + 1 < bytes.size() ? digits[n >> 6 & 63] : '=';
+    text += i + 2 < bytes.size() ? digits[n & 63] : '=';
+  }
+  return text;
+}
+
+// An 8-bit PNG, base64: `image` (values in [0, 1], saturated) times 255.
+std::string png_base64(const cv::Mat& image) {
+  cv::Mat bytes;
+  image.convertTo(bytes, CV_8U, 255.0);
+  std::vector<uchar> png;
+  cv::imencode(".png", bytes, png);
+  return base64(png);
+}
+
+json score_json(const HoleScore& s) {
+  const HoleReport::Stages& t = s.stages;
+  return {{"hole", s.hole},
+          {"area", s.area},
+          {"filled", s.filled},
+          {"failure", s.failure},
+          {"distance",
+           {s.distance.hausdorff, s.distance.from_first, s.distance.from_second, s.distance.mean}},
+          {"edge_ratio", s.edge_ratio},
+          {"new_vertices", s.new_vertices},
+          {"new_faces", s.new_faces},
+          {"seconds", s.seconds},
+          {"method", s.method},
+          {"zone_faces", s.zone_faces},
+          {"stages", {t.zone, t.planes, t.image, t.inpainting, t.stitching, t.checking, t.front}}};
+}
+
+HoleScore score_from_json(const json& j) {
+  HoleScore s;
+  s.hole = j.at("hole");
+  s.area = j.at("area");
+  s.filled = j.at("filled");
+  s.failure = j.at("failure");
+  const json& d = j.at("distance");
+  s.distance = {d[0], d[1], d[2], d[3]};
+  s.edge_ratio = j.at("edge_ratio");
+  s.new_vertices = j.at("new_vertices");
+  s.new_faces = j.at("new_faces");
+  s.seconds = j.at("seconds");
+  s.method = j.at("method");
+  s.zone_faces = j.at("zone_faces");
+  const json& t = j.at("stages");
+  s.stages = {t[0], t[1], t[2], t[3], t[4], t[5], t[6]};
+  return s;
+}
+
+// What a child sends back for one method on one hole.
+std::string run_json(const HoleRun& run, bool images, bool patch) {
+  json j = {{"score", score_json(run.score)},
+            {"self_intersections", run.self_intersections},
+            {"manifold", run.manifold},
+            {"wall_seconds", run.wall_seconds}};
+  if (images && !run.depth.empty()) {
+    cv::Mat known = run.depth.clone();
+    known.setTo(0, run.labels != kKnownPixel);
+    j["images"] = {png_base64(known), png_base64(run.labels == kHolePixel),
+                   png_base64(run.restored)};
+  }
+  if (patch) {
+    json positions = json::array(), triangles = json::array();
+    for (const Vec3& p : run.patch.positions) positions.push_back({p.x(), p.y(), p.z()});
+    for (const Triangle& t : run.patch.triangles) triangles.push_back(t);
+    j["patch"] = {positions, triangles};
+  }
+  return j.dump();
+}
+
+// The run a child reported, or a failed one when the child did not report.
+BenchRun run_from_child(const ChildResult& child, const BenchHole& hole, Mesh& patch) {
+  BenchRun run;
+  run.score.hole = hole.index;
+  run.score.area = hole.hole.area;
+  run.wall_seconds = child.seconds;
+  if (!child.completed) {
+    run.score.failure = child.failure;
+    return run;
+  }
+  const json j = json::parse(child.output);
+  run.score = score_from_json(j.at("score"));
+  run.self_intersections = j.at("self_intersections");
+  run.manifold = j.at("manifold");
+  run.wall_seconds = j.at("wall_seconds");
+  if (j.contains("images")) {
+    run.depth_png = j["images"][0];
+    run.mask_png = j["images"][1];
+    run.restored_png = j["images"][2];
+  }
+  if (j.contains("patch")) {
+    for (const auto& p : j["patch"][0]) patch.positions.emplace_back(p[0], p[1], p[2]);
+    for (const auto& t : j["patch"][1]) patch.triangles.push_back(t.get<Triangle>());
+  }
+  return run;
+}
+
+// The parts as one mesh, each part's elements marked with its index (as a hole).
+Mesh marked_union(const std::vector<Mesh>& parts) {
+  Mesh all;
+  for (size_t i = 0; i < parts.size(); ++i) {
+    const int offset = all.vertex_count();
+    for (const Vec3& p : parts[i].positions) add_vertex(all, p, static_cast<int>(i));
+    for (Triangle t : parts[i].triangles) {
+      for (int& v : t) v += offset;
+      add_face(all, t, static_cast<int>(i));
+    }
+  }
+  return all;
+}
+
+std::string csv_text(const std::string& text) {
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+std::string csv_table(const BenchResults& results) {
+  std::ostringstream csv;
+  csv.precision(17);
+  csv << "mesh,method,hole,area,filled,hausdorff,from_patch,from_truth,mean_distance,d_m,"
+         "edge_ratio,new_vertices,new_faces,seconds,filler,zone_faces,zone_s,planes_s,image_s,"
+         "inpainting_s,stitching_s,checking_s,front_s,failure,shape,radius_dm,length_dm,area_dm2,"
+         "bending,curvature,sharp_feature,hausdorff_dm,from_patch_dm,from_truth_dm,"
+         "mean_distance_dm,self_intersections,manifold,wall_s\n";
+  for (size_t h = 0; h < results.holes.size(); ++h) {
+    const BenchHole& hole = results.holes[h];
+    const double d_m = hole.mean_edge;
+    for (size_t m = 0; m < results.methods.size(); ++m) {
+      const BenchRun& run = results.runs[h][m];
+      const HoleScore& s = run.score;
+      const SurfaceDistance& d = s.distance;
+      csv << hole.mesh << ',' << results.methods[m] << ',' << hole.index << ',' << hole.hole.area
+          << ',' << s.filled << ',' << d.hausdorff << ',' << d.from_first << ',' << d.from_second
+          << ',' << d.mean << ',' << d_m << ',' << s.edge_ratio << ',' << s.new_vertices << ','
+          << s.new_faces << ',' << s.seconds << ',' << csv_text(s.method) << ',' << s.zone_faces
+          << ',' << s.stages.zone << ',' << s.stages.planes << ',' << s.stages.image << ','
+          << s.stages.inpainting << ',' << s.stages.stitching << ',' << s.stages.checking << ','
+          << s.stages.front << ',' << csv_text(s.failure) << ',' << shape_name(hole.hole.shape)
+          << ',' << hole.hole.radius / d_m << ',' << hole.hole.length / d_m << ','
+          << hole.hole.area / (d_m * d_m) << ',' << hole.hole.bending << ','
+          << curvature_name(hole.hole.curvature) << ',' << hole.hole.sharp_feature << ','
+          << d.hausdorff / d_m << ',' << d.from_first / d_m << ',' << d.from_second / d_m << ','
+          << d.mean / d_m << ',' << run.self_intersections << ',' << run.manifold << ','
+          << run.wall_seconds << '\n';
+    }
+  }
+  return csv.str();
+}
+
+// Writes `bytes` to `path` atomically, unless `path` is one of the input meshes.
+void write_output(const std::string& bytes, const fs::path& path,
+                  const std::vector<fs::path>& inputs) {
+  std::error_code error;
+  for (const fs::path& input : inputs) {
+    if (fs::exists(path) && fs::equivalent(path, input, error)) {
+      throw UsageError(path.string() + ": is an input mesh; choose another place");
+    }
+  }
+  const OutputGuard guard;
+  write_file_atomically(bytes, path);
+}
+
+void print_summary(const BenchResults& results, const BenchSummary& summary,
+                   const BenchCommand& command) {
+  std::printf("%d meshes, %zu holes (%d asked per mesh, seed %llu)\n", summary.meshes,
+              results.holes.size(), command.punch.holes,
+              static_cast<unsigned long long>(command.punch.seed));
+  std::printf("%-18s %7s %7s %8s %8s %8s %13s %6s %6s %8s\n", "method", "filled", "closed",
+              "H med/dm", "H max/dm", "mean/dm", "edge r", "PCC", "self-x", "s/hole");
+  for (size_t m = 0; m < results.methods.size(); ++m) {
+    const MethodSummary& s = summary.methods[m];
+    char edge[32];
+    std::snprintf(edge, sizeof edge, "%.2f ± %.2f", s.edge_ratio.mean, s.edge_ratio.sd);
+    std::printf("%-18s %3d/%-3zu %3d/%-3d %8.3f %8.3f %8.3f %13s %6.2f %6d %8.4f\n",
+                results.methods[m].c_str(), s.filled, results.holes.size(), s.closed_meshes,
+                summary.meshes, s.hausdorff_median, s.hausdorff_max, s.mean_distance_median, edge,
+                s.pearson, s.self_intersections, s.seconds_median);
+  }
+  std::printf("\nplaces by H (Table 3), %%:\n%-18s", "method");
+  for (size_t p = 1; p <= results.methods.size(); ++p) std::printf(" %6zu", p);
+  std::printf("\n");
+  for (size_t m = 0; m < results.methods.size(); ++m) {
+    std::printf("%-18s", results.methods[m].c_str());
+    for (double share : summary.overall.shares[m]) std::printf(" %6.1f", 100 * share);
+    std::printf("\n");
+  }
+}
 
 int run_bench(const BenchCommand& command) {
   std::vector<std::string> inpainters = split_list(command.inpainters);
-  if (inpainters.empty()) inpainters = inpainter_names();
+  if (inpainters.empty() && command.baselines.empty()) inpainters = inpainter_names();
+  for (const std::string& name : inpainters) check_inpainter(name, "--inpainters");
   std::vector<TrendKind> trends;
   for (const std::string& name : split_list(command.trends))
     trends.push_back(trend_from_name(name));
-  for (const std::string& name : inpainters) check_inpainter(name, "--inpainters");
+  PunchOptions punch_options = command.punch;
+  punch_options.shapes.clear();
+  for (const std::string& name : split_list(command.shapes)) {
+    try {
+      punch_options.shapes.push_back(shape_from_name(name));
+    } catch (const InvalidInput& error) {
+      throw UsageError(std::string("--shapes: ") + error.what());
+    }
+  }
+  std::vector<BenchmarkMethod> methods;
+  for (const std::string& inpainter : inpainters) {
+    for (TrendKind trend : trends) {
+      RepairOptions options;
+      options.inpainter = inpainter;
+      options.inpainting = command.inpainting;
+      options.trend = trend;
+      options.filler = command.filler == "front" ? Filler::front : Filler::plane;
+      set_fallbacks(command.fallback, options);
+      methods.push_back(
+          pipeline_method(inpainter + (trends.size() > 1 ? "+" + trend_name(trend) : ""), options));
+    }
+  }
+  for (const std::string& name : split_list(command.baselines)) {
+    BaselineOptions options;
+    try {
+      options.method = baseline_from_name(name);
+    } catch (const InvalidInput& error) {
+      throw UsageError(std::string("--baselines: ") + error.what());
+    }
+    methods.push_back(baseline_method(options));
+  }
+  if (methods.empty()) throw UsageError("--inpainters, --baselines: no method to run");
   const std::vector<fs::path> files = mesh_files(command.meshes);
   if (files.empty()) throw UsageError("--meshes: no mesh files found");
 
-  std::vector<Row> rows;
-  std::map<std::string, MethodSummary> summaries;
-  std::vector<std::string> methods;
-  const bool progress = stderr_is_terminal();
+  std::vector<Punched> meshes;
+  BenchResults results;
+  for (const BenchmarkMethod& method : methods) results.methods.push_back(method.name);
+  std::vector<std::pair<int, int>> hole_of;  // per benchmark hole: mesh, hole in it
   for (const fs::path& file : files) {
-    const Mesh original = load_mesh(file.string());
-    const double mean_edge = mean_edge_length(original);
-    PunchOptions punch = command.punch;
-    punch.seed = seed_for_mesh(command.punch.seed, file.filename().string());
-    const PunchResult punched = punch_holes(original, punch);
-    const std::string stem = file.stem().string();
-    if (!command.save.empty()) {
-      fs::create_directories(command.save);
-      write_mesh(punched.mesh, fs::path(command.save) / (stem + "-punched.ply"));
-      Mesh truth;  // the removed faces, each marked with the hole it belongs to
-      for (size_t h = 0; h < punched.holes.size(); ++h) {
-        const Mesh part = extract_faces(original, punched.holes[h].removed_faces);
-        const int offset = truth.vertex_count();
-        for (const Vec3& p : part.positions) add_vertex(truth, p, static_cast<int>(h));
-        for (Triangle t : part.triangles) {
-          for (int& v : t) v += offset;
-          add_face(truth, t, static_cast<int>(h));
-        }
-      }
-      write_mesh(truth, fs::path(command.save) / (stem + "-truth.ply"));
+    Punched mesh;
+    mesh.name = file.filename().string();
+    mesh.original = load_mesh(file.string());
+    mesh.mean_edge = mean_edge_length(mesh.original);
+    PunchOptions options = punch_options;
+    options.seed = seed_for_mesh(command.punch.seed, mesh.name);
+    mesh.punched = punch_holes(mesh.original, options);
+    mesh.loops = punched_loops(mesh.original, mesh.punched);
+    for (size_t h = 0; h < mesh.punched.holes.size(); ++h) {
+      BenchHole hole{mesh.name, static_cast<int>(h), mesh.mean_edge, mesh.punched.holes[h]};
+      hole.hole.removed_faces.clear();
+      results.holes.push_back(std::move(hole));
+      hole_of.emplace_back(static_cast<int>(meshes.size()), static_cast<int>(h));
     }
-    for (const std::string& inpainter : inpainters) {
-      for (TrendKind trend : trends) {
-        const std::string method = inpainter + (trends.size() > 1 ? "+" + trend_name(trend) : "");
-        if (std::find(methods.begin(), methods.end(), method) == methods.end())
-          methods.push_back(method);
-        if (progress)
-          std::fprintf(stderr, "\r\033[K%s: %s", file.filename().c_str(), method.c_str());
-        RepairOptions options;
-        options.inpainter = inpainter;
-        options.inpainting = command.inpainting;
-        options.trend = trend;
-        options.threads = command.threads;
-        options.filler = command.filler == "front" ? Filler::front : Filler::plane;
-        set_fallbacks(command.fallback, options);
-        const RepairResult repaired = repair(punched.mesh, options);
-        if (!command.save.empty()) {
-          write_mesh(repaired.mesh, fs::path(command.save) / (stem + "-" + method + ".ply"));
-        }
-        const std::vector<HoleScore> scores = score_repair(original, punched, repaired, mean_edge);
-        MethodSummary& summary = summaries[method];
-        const int intersections =
-            count_self_intersections(repaired.mesh, faces_of_hole(repaired.mesh, kAnyHole));
-        ++summary.meshes;
-        summary.self_intersections += intersections;
-        bool all_filled = true;
-        for (const HoleScore& score : scores) {
-          rows.push_back({file.filename().string(), method, score, mean_edge});
-          ++summary.holes;
-          all_filled &= score.filled;
-          if (!score.filled) continue;
-          ++summary.filled;
-          summary.hausdorff.push_back(score.distance.hausdorff / mean_edge);
-          summary.mean_distance.push_back(score.distance.mean / mean_edge);
-          summary.edge_ratio.push_back(score.edge_ratio);
-          summary.seconds.push_back(score.seconds);
-        }
-        summary.closed_meshes +=
-            all_filled && intersections == 0 && check_manifold(repaired.mesh).closed_manifold();
-      }
-    }
+    meshes.push_back(std::move(mesh));
   }
+
+  // One child process per hole and method, in that order.
+  const int method_count = static_cast<int>(methods.size());
+  const int jobs = static_cast<int>(results.holes.size()) * method_count;
+  const bool images = !command.out.empty(), patches = !command.save.empty();
+  const bool progress = stderr_is_terminal();
+  int finished = 0;
+  const std::vector<ChildResult> children = run_in_children(
+      jobs, command.threads, command.timeout,
+      [&](int job) {
+        const auto [m, h] = hole_of[job / method_count];
+        const Punched& mesh = meshes[m];
+        return run_json(run_method_on_hole(mesh.original, mesh.punched, h, mesh.loops[h],
+                                           methods[job % method_count], mesh.mean_edge),
+                        images, patches);
+      },
+      [&](int job, const ChildResult&) {
+        ++finished;
+        if (!progress) return;
+        const BenchHole& hole = results.holes[job / method_count];
+        std::fprintf(stderr, "\r\033[K[%d/%d] %s hole %d: %s", finished, jobs, hole.mesh.c_str(),
+                     hole.index, methods[job % method_count].name.c_str());
+      });
   if (progress) std::fprintf(stderr, "\r\033[K");
 
-  if (!command.csv.empty()) {
-    std::ofstream csv(command.csv);
-    csv << "mesh,method,hole,area,filled,hausdorff,from_patch,from_truth,mean_distance,d_m,"
-           "edge_ratio,new_vertices,new_faces,seconds,filler,zone_faces,zone_s,planes_s,image_s,"
-           "inpainting_s,stitching_s,checking_s,front_s,failure\n";
-    for (const Row& row : rows) {
-      const HoleScore& s = row.score;
-      csv << row.mesh << ',' << row.method << ',' << s.hole << ',' << s.area << ',' << s.filled
-          << ',' << s.distance.hausdorff << ',' << s.distance.from_first << ','
-          << s.distance.from_second << ',' << s.distance.mean << ',' << row.mean_edge << ','
-          << s.edge_ratio << ',' << s.new_vertices << ',' << s.new_faces << ',' << s.seconds
-          << ",\"" << s.method << "\"," << s.zone_faces << ',' << s.stages.zone << ','
-          << s.stages.planes << ',' << s.stages.image << ',' << s.stages.inpainting << ','
-          << s.stages.stitching << ',' << s.stages.checking << ',' << s.stages.front << ",\""
-          << s.failure << "\"\n";
+  std::vector<std::vector<Mesh>> patch_parts(meshes.size() * method_count);
+  for (size_t h = 0; h < results.holes.size(); ++h) {
+    results.runs.emplace_back();
+    for (int k = 0; k < method_count; ++k) {
+      Mesh patch;
+      results.runs[h].push_back(
+          run_from_child(children[h * method_count + k], results.holes[h], patch));
+      patch_parts[hole_of[h].first * method_count + k].push_back(std::move(patch));
     }
   }
+  const BenchSummary summary = summarize(results, command.area_classes, command.tie);
 
-  nlohmann::json report = nlohmann::json::object();
-  if (!command.json) {
-    std::printf("%zu meshes, %d holes each asked (seed %llu)\n", files.size(), command.punch.holes,
-                static_cast<unsigned long long>(command.punch.seed));
-    std::printf("%-16s %6s %6s %8s %9s %9s %9s %13s %7s %10s\n", "method", "holes", "filled",
-                "closed", "H med/dm", "H max/dm", "mean/dm", "edge r", "self-x", "s/hole");
-  }
-  for (const std::string& method : methods) {
-    const MethodSummary& s = summaries[method];
-    const double r_mean =
-        s.edge_ratio.empty()
-            ? 0
-            : std::accumulate(s.edge_ratio.begin(), s.edge_ratio.end(), 0.0) / s.edge_ratio.size();
-    double r_var = 0;
-    for (double r : s.edge_ratio) r_var += (r - r_mean) * (r - r_mean);
-    const double r_sd = s.edge_ratio.size() > 1 ? std::sqrt(r_var / (s.edge_ratio.size() - 1)) : 0;
-    const double h_max =
-        s.hausdorff.empty() ? 0 : *std::max_element(s.hausdorff.begin(), s.hausdorff.end());
-    if (command.json) {
-      report[method] = {{"holes", s.holes},
-                        {"filled", s.filled},
-                        {"meshes", s.meshes},
-                        {"closed_meshes", s.closed_meshes},
-                        {"self_intersections", s.self_intersections},
-                        {"hausdorff_median", median(s.hausdorff)},
-                        {"hausdorff_max", h_max},
-                        {"mean_distance_median", median(s.mean_distance)},
-                        {"edge_ratio_mean", r_mean},
-                        {"edge_ratio_sd", r_sd},
-                        {"seconds_per_hole_median", median(s.seconds)}};
-      continue;
+  if (!command.save.empty()) {
+    fs::create_directories(command.save);
+    for (size_t i = 0; i < meshes.size(); ++i) {
+      const Punched& mesh = meshes[i];
+      const std::string stem = fs::path(mesh.name).stem().string();
+      std::vector<Mesh> truth;  // the removed faces, each marked with the hole it belongs to
+      for (const PunchedHole& hole : mesh.punched.holes)
+        truth.push_back(extract_faces(mesh.original, hole.removed_faces));
+      const fs::path dir = command.save;
+      write_output(serialize_mesh(mesh.punched.mesh, MeshFormat::ply),
+                   dir / (stem + "-punched.ply"), files);
+      write_output(serialize_mesh(marked_union(truth), MeshFormat::ply),
+                   dir / (stem + "-truth.ply"), files);
+      for (int k = 0; k < method_count; ++k) {
+        write_output(
+            serialize_mesh(marked_union(patch_parts[i * method_count + k]), MeshFormat::ply),
+            dir / (stem + "-" + methods[k].name + ".ply"), files);
+      }
     }
-    char edge[32];
-    std::snprintf(edge, sizeof edge, "%.2f ± %.2f", r_mean, r_sd);
-    std::printf("%-16s %6d %6d %4d/%-3d %9.3f %9.3f %9.3f %13s %7d %10.4f\n", method.c_str(),
-                s.holes, s.filled, s.closed_meshes, s.meshes, median(s.hausdorff), h_max,
-                median(s.mean_distance), edge, s.self_intersections, median(s.seconds));
   }
-  if (command.json) print_json(report);
+  const std::string table = csv_table(results);
+  if (!command.csv.empty()) write_output(table, command.csv, files);
+  const json summary_document = summary_json(results, summary);
+  if (!command.out.empty()) {
+    const fs::path dir = command.out;
+    fs::create_directories(dir);
+    json document = summary_document;
+    document["command"] = command_line();
+    write_output(table, dir / "holes.csv", files);
+    write_output(document.dump(2) + "\n", dir / "summary.json", files);
+    write_output(
+        "# rangefill bench\n\n`" + command_line() + "`\n\n" + markdown_tables(results, summary),
+        dir / "tables.md", files);
+    write_output(hausdorff_area_svg(results), dir / "hausdorff-vs-area.svg", files);
+    write_output(class_ranking_svg(results, summary.area_classes), dir / "ranks-by-area.svg",
+                 files);
+    write_output(class_ranking_svg(results, surface_classes(summary)),
+                 dir / "ranks-by-curvature.svg", files);
+    write_output(html_report(results, summary, command_line(), command.tie), dir / "report.html",
+                 files);
+  }
+  if (command.json) {
+    print_json(summary_document);
+  } else {
+    print_summary(results, summary, command);
+  }
   return kOk;
 }
 
@@ -185,17 +399,28 @@ int run_bench(const BenchCommand& command) {
 void add_bench_command(CLI::App& app, Runner& runner) {
   auto command = std::make_shared<BenchCommand>();
   CLI::App* sub = app.add_subcommand(
-      "bench", "Punch holes into closed meshes, repair them with each back-end, and measure");
+      "bench",
+      "Punch holes into closed meshes, fill them with each back-end and baseline, and "
+      "measure (Perez et al., Section X)");
   sub->add_option("--meshes", command->meshes, "Closed meshes, or directories of them")->required();
   sub->add_option("--holes-per-mesh", command->punch.holes, "Holes punched per mesh")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
   sub->add_option("--seed", command->punch.seed, "Seed of the punching")->capture_default_str();
-  sub->add_option("--min-radius", command->punch.min_radius, "Smallest hole radius, in d_m")
+  sub->add_option("--min-radius", command->punch.min_radius,
+                  "Smallest hole size (disk: radius; elongated: half-length), in d_m")
       ->capture_default_str();
-  sub->add_option("--max-radius", command->punch.max_radius, "Largest hole radius, in d_m")
+  sub->add_option("--max-radius", command->punch.max_radius, "Largest hole size, in d_m")
       ->capture_default_str();
-  sub->add_option("--inpainters", command->inpainters, "Comma-separated back-ends (default: all)");
+  sub->add_option("--shapes", command->shapes, "Hole shapes taken in turn: disk, elongated")
+      ->capture_default_str();
+  sub->add_flag("--spread,!--no-spread", command->punch.spread,
+                "Look for each hole in turn where the surface is of low, medium or high curvature "
+                "or on a sharp feature (default on)");
+  sub->add_option("--inpainters", command->inpainters,
+                  "Comma-separated back-ends (default: all, unless --baselines is given)");
+  sub->add_option("--baselines", command->baselines,
+                  "Comma-separated baselines: cgal-fair, cgal-triangulate (CGAL's Liepa)");
   sub->add_option("--alpha", command->inpainting.mls_alpha,
                   "mls: alpha of the weights exp(-alpha d^2)/d^2 (eq. 6), d in pixels")
       ->capture_default_str()
@@ -207,13 +432,27 @@ void add_bench_command(CLI::App& app, Runner& runner) {
       ->check(CLI::IsMember({"plane", "front"}));
   sub->add_option("--fallback", command->fallback, "front, least-area, both, or none")
       ->capture_default_str();
-  sub->add_option("--threads", command->threads, "Holes filled in parallel")
+  sub->add_option("--threads", command->threads, "Holes filled at once (each in a process)")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));
+  sub->add_option("--timeout", command->timeout,
+                  "Seconds one method may take on one hole before it counts as failed (0: none)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e6));
+  sub->add_option("--area-classes", command->area_classes,
+                  "Hole-area classes of equal width for the ranking by class (Table 5)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100));
+  sub->add_option("--tie", command->tie,
+                  "Hausdorff distances within this many d_m of each other rank as equal")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 100.0));
   sub->add_option("--csv", command->csv, "Write one row per hole and method to this file");
-  sub->add_option(
-      "--save", command->save,
-      "Write each punched mesh, its removed faces (the ground truth) and each repair here");
+  sub->add_option("--out", command->out,
+                  "Write holes.csv, summary.json, tables.md, SVG plots and report.html here");
+  sub->add_option("--save", command->save,
+                  "Write each punched mesh, its removed faces (the ground truth) and each "
+                  "method's patches here");
   sub->add_flag("--json", command->json, "Print the summary as JSON");
   sub->callback([command, &runner] { runner = [command] { return run_bench(*command); }; });
 }

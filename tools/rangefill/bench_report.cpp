@@ -1,0 +1,480 @@
+#include "bench_report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "cli.h"
+#include "svg.h"
+
+namespace rangefill::cli {
+
+namespace {
+
+constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+
+struct Table {
+  std::string title;  // with the paper's table it mirrors
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+};
+
+std::string fixed(double value, int digits = 2) {
+  if (std::isnan(value)) return "—";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", digits, value);
+  return text;
+}
+
+std::string percent(double share) {
+  return fixed(100 * share, 1) + " %";
+}
+
+std::string ordinal(int n) {
+  const char* suffix = n % 10 == 1 && n % 100 != 11   ? "st"
+                       : n % 10 == 2 && n % 100 != 12 ? "nd"
+                       : n % 10 == 3 && n % 100 != 13 ? "rd"
+                                                      : "th";
+  return std::to_string(n) + suffix;
+}
+
+std::vector<std::string> position_names(size_t methods) {
+  std::vector<std::string> names;
+  for (size_t p = 1; p <= methods; ++p) names.push_back(ordinal(static_cast<int>(p)));
+  return names;
+}
+
+double area_in_dm2(const BenchHole& hole) {
+  return hole.hole.area / (hole.mean_edge * hole.mean_edge);
+}
+
+// H / d_m of a run, NaN when the hole stayed open.
+double hausdorff_in_dm(const BenchResults& results, size_t hole, size_t method) {
+  const BenchRun& run = results.runs[hole][method];
+  return run.score.filled ? run.score.distance.hausdorff / results.holes[hole].mean_edge : kNan;
+}
+
+ClassRanking ranking(const std::string& name, const std::string& label, std::vector<int> holes,
+                     const std::vector<std::vector<int>>& positions, size_t methods) {
+  ClassRanking ranked{name, label, std::move(holes), {}};
+  ranked.shares = rank_shares(positions, ranked.holes, static_cast<int>(methods));
+  return ranked;
+}
+
+// Rows "method | 1st | 2nd | ..." of one ranking.
+void add_share_rows(const BenchResults& results, const ClassRanking& ranking,
+                    const std::vector<std::string>& lead, Table& table) {
+  for (size_t m = 0; m < results.methods.size(); ++m) {
+    std::vector<std::string> row = lead;
+    row.push_back(results.methods[m]);
+    for (double share : ranking.shares[m]) row.push_back(percent(share));
+    table.rows.push_back(std::move(row));
+  }
+}
+
+// Holes of a class that some method filled (those the ranking counts).
+int ranked_holes(const BenchSummary& summary, const ClassRanking& ranking) {
+  int count = 0;
+  for (int h : ranking.holes) count += !summary.positions[h].empty();
+  return count;
+}
+
+// Table 5 (or its curvature counterpart): class, holes, method, shares of each position.
+Table class_table(const std::string& title, const std::string& class_header,
+                  const BenchResults& results, const BenchSummary& summary,
+                  const std::vector<ClassRanking>& classes) {
+  Table table{title, {class_header, "holes", "method"}, {}};
+  for (const std::string& name : position_names(results.methods.size()))
+    table.header.push_back(name);
+  for (const ClassRanking& ranking : classes) {
+    add_share_rows(results, ranking, {ranking.name, std::to_string(ranked_holes(summary, ranking))},
+                   table);
+  }
+  return table;
+}
+
+// Share of first places by class, a column per class.
+Table first_place_table(const std::string& title, const BenchResults& results,
+                        const BenchSummary& summary, const std::vector<ClassRanking>& classes) {
+  Table table{title, {"method"}, {}};
+  for (const ClassRanking& ranking : classes) {
+    table.header.push_back(ranking.name + " (" + std::to_string(ranked_holes(summary, ranking)) +
+                           ")");
+  }
+  for (size_t m = 0; m < results.methods.size(); ++m) {
+    std::vector<std::string> row = {results.methods[m]};
+    for (const ClassRanking& ranking : classes) row.push_back(percent(ranking.shares[m][0]));
+    table.rows.push_back(std::move(row));
+  }
+  return table;
+}
+
+}  // namespace
+
+std::vector<ClassRanking> surface_classes(const BenchSummary& summary) {
+  std::vector<ClassRanking> both = summary.curvature_classes;
+  both.insert(both.end(), summary.feature_classes.begin(), summary.feature_classes.end());
+  return both;
+}
+
+namespace {
+
+std::vector<Table> tables(const BenchResults& results, const BenchSummary& summary) {
+  std::vector<Table> all;
+  const size_t n = results.holes.size();
+  Table overview{
+      "Per method (" + std::to_string(summary.meshes) + " meshes, " + std::to_string(n) + " holes)",
+      {"method", "holes closed", "meshes closed", "H median / d_m", "H max / d_m",
+       "mean dist / d_m", "r = edge / d_m", "self-intersections", "s / hole (median)"},
+      {}};
+  for (size_t m = 0; m < results.methods.size(); ++m) {
+    const MethodSummary& s = summary.methods[m];
+    overview.rows.push_back(
+        {results.methods[m], std::to_string(s.filled) + " / " + std::to_string(n),
+         std::to_string(s.closed_meshes) + " / " + std::to_string(summary.meshes),
+         fixed(s.hausdorff_median), fixed(s.hausdorff_max), fixed(s.mean_distance_median),
+         fixed(s.edge_ratio.mean) + " ± " + fixed(s.edge_ratio.sd),
+         std::to_string(s.self_intersections), fixed(s.seconds_median, 3)});
+  }
+  all.push_back(std::move(overview));
+
+  Table positions{"Effectiveness ranking by H, " +
+                      std::to_string(ranked_holes(summary, summary.overall)) +
+                      " holes some method closed (Table 3)",
+                  {"method"},
+                  {}};
+  for (const std::string& name : position_names(results.methods.size()))
+    positions.header.push_back(name);
+  add_share_rows(results, summary.overall, {}, positions);
+  all.push_back(std::move(positions));
+
+  Table correlation{
+      "Pearson correlation of H / d_m with area / d_m² (Table 4) and edge ratio "
+      "(Table 8), over the holes each method closed",
+      {"method", "PCC", "holes", "r mean ± sd"},
+      {}};
+  for (size_t m = 0; m < results.methods.size(); ++m) {
+    const MethodSummary& s = summary.methods[m];
+    correlation.rows.push_back({results.methods[m], fixed(s.pearson),
+                                std::to_string(s.pearson_holes),
+                                fixed(s.edge_ratio.mean) + " ± " + fixed(s.edge_ratio.sd)});
+  }
+  all.push_back(std::move(correlation));
+
+  all.push_back(first_place_table("First places by hole-area class (area / d_m², holes ranked)",
+                                  results, summary, summary.area_classes));
+  all.push_back(
+      first_place_table("First places by curvature class and sharp feature (holes "
+                        "ranked)",
+                        results, summary, surface_classes(summary)));
+  all.push_back(class_table("Effectiveness ranking by hole-area class (Table 5)", "area / d_m²",
+                            results, summary, summary.area_classes));
+  all.push_back(class_table("Effectiveness ranking by curvature class", "curvature", results,
+                            summary, summary.curvature_classes));
+  all.push_back(class_table("Effectiveness ranking with and without sharp features", "feature",
+                            results, summary, summary.feature_classes));
+
+  Table holes{"H / d_m of every hole (Tables 1 and 2; open: not closed)",
+              {"mesh", "hole", "shape", "radius / d_m", "length / d_m", "area / d_m²", "bending",
+               "curvature", "sharp"},
+              {}};
+  for (const std::string& method : results.methods) holes.header.push_back(method);
+  for (size_t h = 0; h < n; ++h) {
+    const BenchHole& hole = results.holes[h];
+    std::vector<std::string> row = {hole.mesh,
+                                    std::to_string(hole.index),
+                                    shape_name(hole.hole.shape),
+                                    fixed(hole.hole.radius / hole.mean_edge, 1),
+                                    fixed(hole.hole.length / hole.mean_edge, 1),
+                                    fixed(area_in_dm2(hole), 0),
+                                    fixed(hole.hole.bending),
+                                    curvature_name(hole.hole.curvature),
+                                    hole.hole.sharp_feature ? "yes" : "no"};
+    for (size_t m = 0; m < results.methods.size(); ++m) {
+      const double value = hausdorff_in_dm(results, h, m);
+      row.push_back(std::isnan(value) ? "open" : fixed(value));
+    }
+    holes.rows.push_back(std::move(row));
+  }
+  all.push_back(std::move(holes));
+  return all;
+}
+
+std::string to_markdown(const Table& table) {
+  std::ostringstream md;
+  md << "### " << table.title << "\n\n|";
+  for (const std::string& cell : table.header) md << ' ' << cell << " |";
+  md << "\n|";
+  for (size_t c = 0; c < table.header.size(); ++c) md << (c == 0 ? "---|" : "---:|");
+  md << '\n';
+  for (const auto& row : table.rows) {
+    md << '|';
+    for (const std::string& cell : row) md << ' ' << cell << " |";
+    md << '\n';
+  }
+  md << '\n';
+  return md.str();
+}
+
+std::string to_html(const Table& table) {
+  std::ostringstream html;
+  html << "<h3>" << escape_xml(table.title) << "</h3>\n<table>\n<tr>";
+  for (const std::string& cell : table.header) html << "<th>" << escape_xml(cell) << "</th>";
+  html << "</tr>\n";
+  for (const auto& row : table.rows) {
+    html << "<tr>";
+    for (const std::string& cell : row) html << "<td>" << escape_xml(cell) << "</td>";
+    html << "</tr>\n";
+  }
+  html << "</table>\n";
+  return html.str();
+}
+
+std::string image(const std::string& png, const std::string& caption) {
+  return "<figure><img src=\"data:image/png;base64," + png + "\" alt=\"" + escape_xml(caption) +
+         "\"><figcaption>" + escape_xml(caption) + "</figcaption></figure>\n";
+}
+
+// One hole of the gallery: its description, images and every method's outcome.
+std::string hole_section(const BenchResults& results, size_t h) {
+  const BenchHole& hole = results.holes[h];
+  std::ostringstream html;
+  html << "<section class=\"hole\"><h3>" << escape_xml(hole.mesh) << ", hole " << hole.index
+       << "</h3>\n<p>" << shape_name(hole.hole.shape) << ", " << fixed(area_in_dm2(hole), 0)
+       << " d<sub>m</sub>², bending " << fixed(hole.hole.bending) << " ("
+       << curvature_name(hole.hole.curvature) << " curvature"
+       << (hole.hole.sharp_feature ? ", on a sharp feature" : "") << ")</p>\n<div class=\"row\">";
+  bool shown = false;
+  for (size_t m = 0; m < results.methods.size(); ++m) {
+    const BenchRun& run = results.runs[h][m];
+    if (run.depth_png.empty()) continue;
+    if (!shown) {
+      html << image(run.depth_png, "range image") << image(run.mask_png, "mask");
+      shown = true;
+    }
+    const double value = hausdorff_in_dm(results, h, m);
+    html << image(run.restored_png, results.methods[m] + ": H " +
+                                        (std::isnan(value) ? "open" : fixed(value) + " d_m"));
+  }
+  if (!shown) html << "<p>No range image: no method inpainted this hole.</p>";
+  html << "</div>\n<table><tr><th>method</th><th>H / d_m</th><th>filled by</th><th>new "
+          "faces</th><th>failure</th></tr>\n";
+  for (size_t m = 0; m < results.methods.size(); ++m) {
+    const BenchRun& run = results.runs[h][m];
+    html << "<tr><td>" << escape_xml(results.methods[m]) << "</td><td>"
+         << fixed(hausdorff_in_dm(results, h, m)) << "</td><td>" << escape_xml(run.score.method)
+         << "</td><td>" << run.score.new_faces << "</td><td>" << escape_xml(run.score.failure)
+         << "</td></tr>\n";
+  }
+  html << "</table></section>\n";
+  return html.str();
+}
+
+nlohmann::json shares_json(const BenchResults& results, const ClassRanking& ranking) {
+  nlohmann::json shares = nlohmann::json::object();
+  for (size_t m = 0; m < results.methods.size(); ++m)
+    shares[results.methods[m]] = ranking.shares[m];
+  return {{"class", ranking.name}, {"holes", ranking.holes.size()}, {"shares", shares}};
+}
+
+}  // namespace
+
+BenchSummary summarize(const BenchResults& results, int area_classes, double tie) {
+  const size_t methods = results.methods.size(), n = results.holes.size();
+  BenchSummary summary;
+  std::vector<std::vector<double>> errors(n, std::vector<double>(methods));
+  for (size_t h = 0; h < n; ++h) {
+    for (size_t m = 0; m < methods; ++m) errors[h][m] = hausdorff_in_dm(results, h, m);
+  }
+  summary.positions = rank_positions(errors, tie);
+  std::vector<int> all(n);
+  for (size_t h = 0; h < n; ++h) all[h] = static_cast<int>(h);
+  summary.overall = ranking("all", "all", all, summary.positions, methods);
+
+  std::map<std::string, std::vector<size_t>> holes_of_mesh;
+  for (size_t h = 0; h < n; ++h) holes_of_mesh[results.holes[h].mesh].push_back(h);
+  summary.meshes = static_cast<int>(holes_of_mesh.size());
+  for (size_t m = 0; m < methods; ++m) {
+    MethodSummary s;
+    std::vector<double> hausdorff, mean_distance, seconds, edge_ratio, area;
+    for (size_t h = 0; h < n; ++h) {
+      const BenchRun& run = results.runs[h][m];
+      s.self_intersections += run.self_intersections;
+      if (!run.score.filled) continue;
+      const double d_m = results.holes[h].mean_edge;
+      ++s.filled;
+      hausdorff.push_back(run.score.distance.hausdorff / d_m);
+      mean_distance.push_back(run.score.distance.mean / d_m);
+      seconds.push_back(run.score.seconds);
+      edge_ratio.push_back(run.score.edge_ratio);
+      area.push_back(area_in_dm2(results.holes[h]));
+    }
+    for (const auto& [mesh, holes] : holes_of_mesh) {
+      bool closed = true;
+      for (size_t h : holes) {
+        const BenchRun& run = results.runs[h][m];
+        closed &= run.score.filled && run.manifold && run.self_intersections == 0;
+      }
+      s.closed_meshes += closed;
+    }
+    s.hausdorff_median = median(hausdorff);
+    s.hausdorff_max = hausdorff.empty() ? 0 : *std::max_element(hausdorff.begin(), hausdorff.end());
+    s.mean_distance_median = median(mean_distance);
+    s.seconds_median = median(seconds);
+    s.edge_ratio = mean_sd(edge_ratio);
+    s.pearson = pearson(area, hausdorff);
+    s.pearson_holes = static_cast<int>(hausdorff.size());
+    summary.methods.push_back(s);
+  }
+
+  std::vector<double> areas;
+  for (const BenchHole& hole : results.holes) areas.push_back(area_in_dm2(hole));
+  const EqualWidthClasses classes = equal_width_classes(areas, area_classes);
+  for (int c = 0; c < area_classes; ++c) {
+    std::vector<int> members;
+    for (size_t h = 0; h < n; ++h) {
+      if (classes.of_value[h] == c) members.push_back(static_cast<int>(h));
+    }
+    summary.area_classes.push_back(
+        ranking(fixed(classes.edges[c], 0) + "–" + fixed(classes.edges[c + 1], 0),
+                std::to_string(c + 1), members, summary.positions, methods));
+  }
+  for (CurvatureClass curvature :
+       {CurvatureClass::low, CurvatureClass::medium, CurvatureClass::high}) {
+    std::vector<int> members;
+    for (size_t h = 0; h < n; ++h) {
+      if (results.holes[h].hole.curvature == curvature) members.push_back(static_cast<int>(h));
+    }
+    summary.curvature_classes.push_back(ranking(
+        curvature_name(curvature), curvature_name(curvature), members, summary.positions, methods));
+  }
+  for (bool sharp : {true, false}) {
+    std::vector<int> members;
+    for (size_t h = 0; h < n; ++h) {
+      if (results.holes[h].hole.sharp_feature == sharp) members.push_back(static_cast<int>(h));
+    }
+    summary.feature_classes.push_back(ranking(sharp ? "sharp feature" : "no sharp feature",
+                                              sharp ? "sharp" : "no sharp", members,
+                                              summary.positions, methods));
+  }
+  return summary;
+}
+
+nlohmann::json summary_json(const BenchResults& results, const BenchSummary& summary) {
+  nlohmann::json methods = nlohmann::json::object();
+  for (size_t m = 0; m < results.methods.size(); ++m) {
+    const MethodSummary& s = summary.methods[m];
+    methods[results.methods[m]] = {{"holes", results.holes.size()},
+                                   {"filled", s.filled},
+                                   {"meshes", summary.meshes},
+                                   {"closed_meshes", s.closed_meshes},
+                                   {"self_intersections", s.self_intersections},
+                                   {"hausdorff_median", s.hausdorff_median},
+                                   {"hausdorff_max", s.hausdorff_max},
+                                   {"mean_distance_median", s.mean_distance_median},
+                                   {"edge_ratio_mean", s.edge_ratio.mean},
+                                   {"edge_ratio_sd", s.edge_ratio.sd},
+                                   {"pearson_hausdorff_area", s.pearson},
+                                   {"pearson_holes", s.pearson_holes},
+                                   {"seconds_per_hole_median", s.seconds_median},
+                                   {"rank_shares", summary.overall.shares[m]}};
+  }
+  auto class_list = [&](const std::vector<ClassRanking>& classes) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const ClassRanking& ranking : classes) list.push_back(shares_json(results, ranking));
+    return list;
+  };
+  nlohmann::json holes = nlohmann::json::array();
+  for (size_t h = 0; h < results.holes.size(); ++h) {
+    const BenchHole& hole = results.holes[h];
+    holes.push_back({{"mesh", hole.mesh},
+                     {"hole", hole.index},
+                     {"shape", shape_name(hole.hole.shape)},
+                     {"area_dm2", area_in_dm2(hole)},
+                     {"bending", hole.hole.bending},
+                     {"curvature", curvature_name(hole.hole.curvature)},
+                     {"sharp_feature", hole.hole.sharp_feature},
+                     {"positions", summary.positions[h]}});
+  }
+  return {{"methods", methods},
+          {"method_order", results.methods},
+          {"ranking",
+           {{"all", shares_json(results, summary.overall)},
+            {"area_classes", class_list(summary.area_classes)},
+            {"curvature_classes", class_list(summary.curvature_classes)},
+            {"feature_classes", class_list(summary.feature_classes)}}},
+          {"holes", holes}};
+}
+
+std::string markdown_tables(const BenchResults& results, const BenchSummary& summary) {
+  std::string md;
+  for (const Table& table : tables(results, summary)) md += to_markdown(table);
+  return md;
+}
+
+std::string hausdorff_area_svg(const BenchResults& results) {
+  std::vector<ScatterPanel> panels;
+  for (size_t m = 0; m < results.methods.size(); ++m) {
+    ScatterPanel panel{results.methods[m], {}, {}};
+    for (size_t h = 0; h < results.holes.size(); ++h) {
+      const double value = hausdorff_in_dm(results, h, m);
+      if (std::isnan(value)) continue;
+      panel.x.push_back(area_in_dm2(results.holes[h]));
+      panel.y.push_back(value);
+    }
+    panels.push_back(std::move(panel));
+  }
+  return scatter_panels_svg(panels, "hole area / d_m²", "Hausdorff distance / d_m");
+}
+
+std::string class_ranking_svg(const BenchResults& results,
+                              const std::vector<ClassRanking>& classes) {
+  std::vector<BarPanel> panels;
+  for (size_t m = 0; m < results.methods.size(); ++m) {
+    BarPanel panel{results.methods[m], {}, {}};
+    for (size_t c = 0; c < classes.size(); ++c) {
+      panel.categories.push_back(classes[c].label);
+      panel.segments.push_back(classes[c].shares[m]);
+    }
+    panels.push_back(std::move(panel));
+  }
+  return stacked_bars_svg(panels, position_names(results.methods.size()));
+}
+
+std::string html_report(const BenchResults& results, const BenchSummary& summary,
+                        const std::string& command, double tie) {
+  std::ostringstream html;
+  html << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
+          "<title>rangefill bench</title>\n<style>\n"
+          "body{font-family:sans-serif;margin:2em;max-width:1400px}\n"
+          "table{border-collapse:collapse;margin:0.5em 0 1.5em}\n"
+          "td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}\n"
+          "td:first-child,th:first-child{text-align:left}\n"
+          ".row{display:flex;flex-wrap:wrap;gap:8px}\n"
+          "figure{margin:0}figcaption{font-size:80%;text-align:center}\n"
+          "img{width:160px;image-rendering:pixelated;border:1px solid #ccc}\n"
+          ".hole{border-top:1px solid #999;margin-top:1em}\n"
+          "</style></head><body>\n<h1>rangefill bench</h1>\n<p><code>"
+       << escape_xml(command)
+       << "</code></p>\n<p>H: symmetric Hausdorff distance between each patch and the faces "
+          "removed (Pérez et al., Section X); a method that did not close a hole is ranked last "
+          "on it; distances within "
+       << fixed(tie, 3) << " d_m of each other share the better place.</p>\n";
+  const std::vector<Table> all = tables(results, summary);
+  for (size_t t = 0; t + 1 < all.size(); ++t) html << to_html(all[t]);
+  html << "<h2>Plots</h2>\n<h3>Hausdorff distance against hole area</h3>\n"
+       << hausdorff_area_svg(results) << "<h3>Positions by hole-area class</h3>\n"
+       << class_ranking_svg(results, summary.area_classes)
+       << "<h3>Positions by curvature class and sharp feature</h3>\n"
+       << class_ranking_svg(results, surface_classes(summary)) << "<h2>Holes</h2>\n"
+       << to_html(all.back())
+       << "<p>Each hole's range image (normalised depth of the first plane tried, unknown pixels "
+          "black), its mask and each back-end's restoration of it.</p>\n";
+  for (size_t h = 0; h < results.holes.size(); ++h) html << hole_section(results, h);
+  html << "</body></html>\n";
+  return html.str();
+}
+
+}  // namespace rangefill::cli

@@ -1,0 +1,88 @@
+// What `rangefill bench` measured and how it is reported: the aggregates of Pérez et al., Section
+// X (computed by the library, evaluation.h) as a JSON summary, Markdown tables, SVG plots and one
+// self-contained HTML report.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "rangefill/evaluation.h"
+
+namespace rangefill::cli {
+
+/// One punched hole of the benchmark.
+struct BenchHole {
+  std::string mesh;      // file name
+  int index = 0;         // in its mesh's PunchResult
+  double mean_edge = 0;  // d_m of its mesh
+  PunchedHole hole;      // removed_faces left out
+};
+
+/// One method on one hole, as it came back from its child process.
+struct BenchRun {
+  HoleScore score;
+  int self_intersections = 0;
+  bool manifold = false;
+  double wall_seconds = 0;
+  std::string depth_png, mask_png, restored_png;  // base64; empty without a range image
+};
+
+struct BenchResults {
+  std::vector<std::string> methods;
+  std::vector<BenchHole> holes;
+  std::vector<std::vector<BenchRun>> runs;  // [hole][method]
+};
+
+/// The ranking within one class of holes.
+struct ClassRanking {
+  std::string name;
+  std::string label;                        // short, for plots
+  std::vector<int> holes;                   // indices into BenchResults::holes
+  std::vector<std::vector<double>> shares;  // [method][position − 1]
+};
+
+struct MethodSummary {
+  int filled = 0, closed_meshes = 0, self_intersections = 0;
+  double hausdorff_median = 0, hausdorff_max = 0, mean_distance_median = 0;  // over d_m
+  double seconds_median = 0;
+  MeanSd edge_ratio;   // Table 8, over the filled holes
+  double pearson = 0;  // Table 4: of H / d_m with area / d_m², over the filled holes (NaN: none)
+  int pearson_holes = 0;
+};
+
+struct BenchSummary {
+  int meshes = 0;
+  std::vector<MethodSummary> methods;
+  std::vector<std::vector<int>> positions;  // [hole][method], rank_positions of H
+  ClassRanking overall;                     // Table 3
+  std::vector<ClassRanking> area_classes;   // Table 5
+  std::vector<ClassRanking> curvature_classes, feature_classes;
+};
+
+/// The curvature classes, then the feature classes.
+std::vector<ClassRanking> surface_classes(const BenchSummary& summary);
+
+/// The aggregates, with `area_classes` classes of equal width in area / d_m²; values of H within
+/// `tie`·d_m of each other rank as equal.
+BenchSummary summarize(const BenchResults& results, int area_classes, double tie);
+
+nlohmann::json summary_json(const BenchResults& results, const BenchSummary& summary);
+
+/// Every table of the summary as Markdown, each under a heading naming the paper's table.
+std::string markdown_tables(const BenchResults& results, const BenchSummary& summary);
+
+/// H / d_m against area / d_m², one panel per method.
+std::string hausdorff_area_svg(const BenchResults& results);
+
+/// Shares of the positions by class, one panel per method.
+std::string class_ranking_svg(const BenchResults& results,
+                              const std::vector<ClassRanking>& classes);
+
+/// One self-contained page: the tables, the plots and, for each hole, its range image, mask and
+/// each back-end's restoration; `tie` as for summarize.
+std::string html_report(const BenchResults& results, const BenchSummary& summary,
+                        const std::string& command, double tie);
+
+}  // namespace rangefill::cli
