@@ -118,20 +118,22 @@ double sample_loss(const FoeModel& model, const HoleSample& sample, std::vector<
 
 }  // namespace
 
-FoeObjective::FoeObjective(std::vector<HoleSample> samples, int size, int count, int threads)
+FoeObjective::FoeObjective(std::vector<HoleSample> samples, int size, int count, int threads,
+                           bool known_rms)
     : samples_(std::move(samples)),
       basis_(dct_basis(size)),
       size_(size),
       count_(count),
-      threads_(std::max(1, threads)) {
+      threads_(std::max(1, threads)),
+      known_rms_(known_rms) {
   if (size < 3 || size % 2 == 0) throw InvalidInput("foe training: filter size must be odd, >= 3");
   if (count < 1 || count > 3 * (size * size - 1)) {
     throw InvalidInput("foe training: filter count must be in [1, 3 (size² − 1)]");
   }
-  // The model divides its inputs by the RMS of the known pixels (FoeModel::known_rms): so do the
-  // samples, and the loss is measured in those units.
+  // When the model divides its inputs by the RMS of the known pixels (FoeModel::known_rms), so do
+  // the samples, and the loss is measured in those units.
   FoeModel normalising;
-  normalising.known_rms = true;
+  normalising.known_rms = known_rms;
   for (HoleSample& sample : samples_) {
     // A new buffer: `samples` shares its pixels with the caller's, and assigning a MatExpr to
     // sample.truth would write them in place.
@@ -172,7 +174,7 @@ FoeModel FoeObjective::model(const std::vector<double>& theta) const {
     model.alphas.push_back(std::exp(theta[functions * count_ + i]));
   }
   model.input_scale = 1;
-  model.known_rms = true;
+  model.known_rms = known_rms_;
   return model;
 }
 
@@ -185,6 +187,23 @@ std::vector<double> FoeObjective::initial_parameters() const {
     theta[i * functions + j] = round == 0 ? 1 : std::sqrt(0.5);
     if (round > 0)
       theta[i * functions + (j + 1) % functions] = round == 1 ? std::sqrt(0.5) : -std::sqrt(0.5);
+  }
+  return theta;
+}
+
+std::vector<double> FoeObjective::parameters_of(const FoeModel& model) const {
+  if (model.size != size_ || model.count() != count_ || model.known_rms != known_rms_) {
+    throw InvalidInput("foe training: the initial model '" + model.name +
+                       "' differs in filter size, count or normalisation");
+  }
+  const int functions = static_cast<int>(basis_.size());
+  std::vector<double> theta(parameter_count(), 0.0);
+  for (int i = 0; i < count_; ++i) {
+    const cv::Mat filter = model.filters[i] * model.input_scale;  // the model sees input_scale · x
+    for (int j = 0; j < functions; ++j) {
+      theta[i * functions + j] = dot(filter, basis_[j]) / coefficient_scale_;  // orthonormal basis
+    }
+    theta[functions * count_ + i] = std::log(model.alphas[i]);
   }
   return theta;
 }
@@ -275,18 +294,29 @@ FoeTraining train_foe(const std::vector<HoleSample>& training,
                       const std::vector<HoleSample>& validation,
                       const FoeTrainingOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  const FoeObjective objective(training, options.size, options.count, options.threads);
-  const FoeObjective held_out(validation, options.size, options.count, options.threads);
-  std::vector<double> theta = objective.initial_parameters();
+  const FoeObjective objective(training, options.size, options.count, options.threads,
+                               options.known_rms);
+  const FoeObjective held_out(validation, options.size, options.count, options.threads,
+                              options.known_rms);
+  std::vector<double> theta = options.initial_model
+                                  ? objective.parameters_of(*options.initial_model)
+                                  : objective.initial_parameters();
   FoeTraining result;
   result.training_loss_start = objective.evaluate(theta, nullptr);
   result.validation_loss_start = held_out.evaluate(theta, nullptr);
 
   ceres::GradientProblemSolver::Options solver;
   solver.line_search_direction_type = ceres::LBFGS;
+  // θ started from a model (Roth & Black's: filters of size ~100) is far from unit scale: scale the
+  // L-BFGS Hessian estimate by the curvature seen, not by identity.
+  solver.use_approximate_eigenvalue_bfgs_scaling = true;
   solver.max_num_iterations = options.iterations;
   solver.function_tolerance = 1e-9;
   solver.parameter_tolerance = 1e-12;
+  // The MAP moves between basins as θ changes, so the objective has small jumps; a line search
+  // that has not found a step in 10 tries will not (Ceres' 20 tries, 5 restarts took 10 minutes).
+  solver.max_num_line_search_step_size_iterations = 10;
+  solver.max_num_line_search_direction_restarts = 2;
   if (options.max_seconds > 0) solver.max_solver_time_in_seconds = options.max_seconds;
   solver.logging_type = ceres::SILENT;
   solver.update_state_every_iteration = true;

@@ -96,7 +96,9 @@ TEST(Inpaint, KnownPixelsAreReturnedBitIdentical) {
         const float a = depth.at<float>(row, col), b = out.at<float>(row, col);
         if (mask.at<std::uint8_t>(row, col)) {
           not_finite += !std::isfinite(b);
-          if (name != "mls") {  // within the known range: a weighted mean (mls fits quadratics)
+          // Within the known range for weighted means; mls fits quadratics, and an FoE MAP has no
+          // maximum principle (on this noise Roth & Black's prior lowers E by overshooting it).
+          if (name != "mls" && name != "foe") {
             EXPECT_GE(b, -3.0f) << name;
             EXPECT_LE(b, 7.0f) << name;
           }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,16 +14,17 @@
 
 namespace rangefill {
 
-/// The objective: the mean over samples (each divided by the RMS of its known pixels, as the model
-/// will divide its inputs) of ½‖M ⊙ (x* − truth)‖² / |M|, where x* = foe_map of the sample, as at
-/// repair time. Its parameters θ: the count × (size² − 1) coefficients of
-/// the filters on the 2-D DCT basis without its constant term (so every filter has zero mean; in
-/// units that make θ of order 1), then log α_i (count). The gradient is exact up to the MAP's
-/// convergence: implicit differentiation of ∇_u E(x*) = 0, one solve with the Hessian of E over
-/// the unknowns per sample.
+/// The objective: the mean over samples (each divided by the RMS of its known pixels when the model
+/// will divide its inputs so) of ½‖M ⊙ (x* − truth)‖² / |M|, where x* = foe_map of the sample, as
+/// at repair time. Its parameters θ: the count × (size² − 1) coefficients of the filters on the 2-D
+/// DCT basis without its constant term (so every filter has zero mean; in units that make θ of
+/// order 1), then log α_i (count). The gradient is exact up to the MAP's convergence: implicit
+/// differentiation of ∇_u E(x*) = 0, one solve with the Hessian of E over the unknowns per sample.
 class FoeObjective {
  public:
-  FoeObjective(std::vector<HoleSample> samples, int size, int count, int threads);
+  /// `known_rms`: the model divides its inputs by the RMS of their known pixels (FoeModel).
+  FoeObjective(std::vector<HoleSample> samples, int size, int count, int threads,
+               bool known_rms = true);
 
   int parameter_count() const;
   /// The objective at θ; with `gradient`, also ∂/∂θ. Deterministic at any thread count.
@@ -31,6 +33,9 @@ class FoeObjective {
   /// and then differences of neighbouring ones), all scaled so that the first one's responses on
   /// the samples have unit spread; α = 1.
   std::vector<double> initial_parameters() const;
+  /// θ of `model`'s filters (their constant parts dropped) and weights. Throws InvalidInput unless
+  /// it has this objective's filter size, count and normalisation.
+  std::vector<double> parameters_of(const FoeModel& model) const;
   FoeModel model(const std::vector<double>& theta) const;
 
  private:
@@ -38,6 +43,7 @@ class FoeObjective {
   std::vector<cv::Mat> basis_;    // size × size DCT functions without the constant one
   double coefficient_scale_ = 1;  // the unit of the filter coefficients in θ
   int size_, count_, threads_;
+  bool known_rms_;
 };
 
 struct FoeTrainingOptions {
@@ -45,6 +51,8 @@ struct FoeTrainingOptions {
   int count = 8;           // at most 3 (size² − 1): the filters may be over-complete
   int iterations = 100;    // L-BFGS iterations over θ
   double max_seconds = 0;  // stop after this long (0: no limit); the result then depends on speed
+  bool known_rms = true;   // inputs divided by the RMS of their known pixels (FoeModel::known_rms)
+  std::optional<FoeModel> initial_model;  // start from its filters and weights, not the DCT
   int threads = 2;
   /// Called after each iteration with its number, the training objective, the seconds so far and
   /// the model of the current θ (a checkpoint).

@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -92,6 +94,12 @@ bool stderr_is_terminal() {
 namespace {
 std::string invocation;   // the command line, for reports that say how they were made
 std::mutex output_mutex;  // held while an output is written; the interrupt thread waits for it
+std::atomic<bool> interrupted{false};  // set by the interrupt thread before it waits
+
+// After an interrupt: the interrupt thread is about to end the process; start no more work.
+[[noreturn]] void wait_for_exit() {
+  for (;;) std::this_thread::sleep_for(std::chrono::hours(1));
+}
 }  // namespace
 
 void handle_interrupts() {
@@ -103,6 +111,7 @@ void handle_interrupts() {
     int signal = 0;
     while (sigwait(&signals, &signal) != 0) {
     }
+    interrupted = true;
     std::lock_guard<std::mutex> lock(output_mutex);
     const char message[] = "rangefill: interrupted\n";
     [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, message, sizeof message - 1);
@@ -112,10 +121,14 @@ void handle_interrupts() {
 
 OutputGuard::OutputGuard() {
   output_mutex.lock();
+  if (!interrupted) return;
+  output_mutex.unlock();
+  wait_for_exit();
 }
 
 OutputGuard::~OutputGuard() {
   output_mutex.unlock();
+  if (interrupted) wait_for_exit();  // the interrupt takes effect now, not after the next output
 }
 
 void set_command_line(int argc, char** argv) {

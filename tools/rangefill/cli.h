@@ -79,7 +79,8 @@ void set_fallbacks(const std::string& list, RepairOptions& options);
 /// main, before any other thread exists (threads inherit the blocked signals).
 void handle_interrupts();
 
-/// Held while an output file is written: an interrupt waits until it is gone.
+/// Held while an output file is written: an interrupt waits until it is gone, and then ends the
+/// process before anything else happens.
 class OutputGuard {
  public:
   OutputGuard();

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "cli.h"
+#include "rangefill/foe.h"
 #include "rangefill/foe_training.h"
 #include "rangefill/io.h"
 #include "rangefill/patches.h"
@@ -17,7 +18,7 @@ namespace fs = std::filesystem;
 
 struct TrainCommand {
   std::vector<std::string> meshes;
-  std::string validation = kValidationMeshes, output, name = "depth";
+  std::string validation = kValidationMeshes, output, name = "depth", initial_model;
   HoleSampleOptions samples;
   FoeTrainingOptions training;
 };
@@ -71,6 +72,7 @@ int run_train(const TrainCommand& command) {
     return serialize_foe_model(model);
   };
   FoeTrainingOptions options = command.training;
+  if (!command.initial_model.empty()) options.initial_model = load_foe_model(command.initial_model);
   options.progress = [&](int iteration, double loss, double seconds, const FoeModel& model) {
     std::printf("iteration %4d  loss %.6e  %7.1f s\n", iteration, loss, seconds);
     std::fflush(stdout);
@@ -118,6 +120,11 @@ void add_train_foe_command(CLI::App& app, Runner& runner) {
   sub->add_option("--max-seconds", command->training.max_seconds,
                   "Stop after this many seconds (0: no limit)")
       ->capture_default_str();
+  sub->add_option("--known-rms", command->training.known_rms,
+                  "Divide the model's inputs by the RMS of their known pixels")
+      ->capture_default_str();
+  sub->add_option("--init", command->initial_model,
+                  "Start from this model's filters and weights (a shipped model or a file)");
   sub->add_option("--threads", command->training.threads, "Threads")->capture_default_str();
   sub->callback([command, &runner] { runner = [command] { return run_train(*command); }; });
 }
