@@ -119,13 +119,14 @@ double sample_loss(const FoeModel& model, const HoleSample& sample, std::vector<
 }  // namespace
 
 FoeObjective::FoeObjective(std::vector<HoleSample> samples, int size, int count, int threads,
-                           bool known_rms)
+                           bool known_rms, std::optional<FoeModel> start)
     : samples_(std::move(samples)),
       basis_(dct_basis(size)),
       size_(size),
       count_(count),
       threads_(std::max(1, threads)),
-      known_rms_(known_rms) {
+      known_rms_(known_rms),
+      start_(std::move(start)) {
   if (size < 3 || size % 2 == 0) throw InvalidInput("foe training: filter size must be odd, >= 3");
   if (count < 1 || count > 3 * (size * size - 1)) {
     throw InvalidInput("foe training: filter count must be in [1, 3 (size² − 1)]");
@@ -155,6 +156,18 @@ FoeObjective::FoeObjective(std::vector<HoleSample> samples, int size, int count,
   }
   const double spread = std::sqrt(sum / std::max(1.0, pixels));
   coefficient_scale_ = spread > 0 ? 1.0 / spread : 1.0;
+  if (start_) {
+    // Started from a model, θ's unit is its RMS filter coefficient instead: Roth & Black's are ~30
+    // of the unit above, and L-BFGS's first step, the gradient itself, was then too short to be
+    // told from the small jumps of the MAP between basins.
+    coefficient_scale_ = 1;
+    const std::vector<double> theta = parameters_of(*start_);
+    const int coefficients = count_ * static_cast<int>(basis_.size());
+    double squares = 0;
+    for (int k = 0; k < coefficients; ++k) squares += theta[k] * theta[k];
+    const double rms = std::sqrt(squares / coefficients);
+    if (rms > 0) coefficient_scale_ = rms;
+  }
 }
 
 int FoeObjective::parameter_count() const {
@@ -179,6 +192,7 @@ FoeModel FoeObjective::model(const std::vector<double>& theta) const {
 }
 
 std::vector<double> FoeObjective::initial_parameters() const {
+  if (start_) return parameters_of(*start_);
   const int functions = static_cast<int>(basis_.size());
   std::vector<double> theta(parameter_count(), 0.0);  // α = 1
   for (int i = 0; i < count_; ++i) {
@@ -295,12 +309,10 @@ FoeTraining train_foe(const std::vector<HoleSample>& training,
                       const FoeTrainingOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const FoeObjective objective(training, options.size, options.count, options.threads,
-                               options.known_rms);
+                               options.known_rms, options.initial_model);
   const FoeObjective held_out(validation, options.size, options.count, options.threads,
-                              options.known_rms);
-  std::vector<double> theta = options.initial_model
-                                  ? objective.parameters_of(*options.initial_model)
-                                  : objective.initial_parameters();
+                              options.known_rms, options.initial_model);
+  std::vector<double> theta = objective.initial_parameters();
   FoeTraining result;
   result.training_loss_start = objective.evaluate(theta, nullptr);
   result.validation_loss_start = held_out.evaluate(theta, nullptr);

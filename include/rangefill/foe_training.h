@@ -23,8 +23,10 @@ namespace rangefill {
 class FoeObjective {
  public:
   /// `known_rms`: the model divides its inputs by the RMS of their known pixels (FoeModel).
+  /// `start`: the model θ starts from (initial_parameters), else the DCT basis; it must have this
+  /// size, count and normalisation (else InvalidInput).
   FoeObjective(std::vector<HoleSample> samples, int size, int count, int threads,
-               bool known_rms = true);
+               bool known_rms = true, std::optional<FoeModel> start = std::nullopt);
 
   int parameter_count() const;
   /// The objective at θ; with `gradient`, also ∂/∂θ. Deterministic at any thread count.
@@ -32,6 +34,7 @@ class FoeObjective {
   /// θ of the first `count` DCT filters (lowest frequencies first; past the basis, normalised sums
   /// and then differences of neighbouring ones), all scaled so that the first one's responses on
   /// the samples have unit spread; α = 1.
+  /// With a start model, its θ.
   std::vector<double> initial_parameters() const;
   /// θ of `model`'s filters (their constant parts dropped) and weights. Throws InvalidInput unless
   /// it has this objective's filter size, count and normalisation.
@@ -44,6 +47,7 @@ class FoeObjective {
   double coefficient_scale_ = 1;  // the unit of the filter coefficients in θ
   int size_, count_, threads_;
   bool known_rms_;
+  std::optional<FoeModel> start_;
 };
 
 struct FoeTrainingOptions {
