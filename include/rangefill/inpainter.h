@@ -12,7 +12,7 @@
 namespace rangefill {
 
 struct InpainterOptions {
-  double radius = 5;                 // neighbourhood radius in pixels (telea, ns)
+  double radius = 5;            // neighbourhood radius in pixels (telea, ns)
   std::string model = "depth";  // foe: a shipped model's name or a model file
   double mls_alpha = 1.0 / 64;  // mls: α of eq. 6 (Wang & Oliveira), per squared pixel (README)
   double mls_ring = 3;          // mls: known pixels within this many pixels of a hole are fitted

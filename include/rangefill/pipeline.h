@@ -74,7 +74,7 @@ struct RepairOptions {
   bool fallback_least_area = true;  // ... and then to a least-area patch without new vertices
   FrontOptions front;
   MlsOptions mls;
-  std::string inpainter = "ns";
+  std::string inpainter = "foe";  // the depth-trained FoE: best on the benchmark (README)
   InpainterOptions inpainting;
   /// Trend removed before inpainting and added back (trend.h). Quadric by default: OpenCV's telea
   /// and ns are weighted means at heart and, on curved surfaces, pull a fill towards the lower ring
