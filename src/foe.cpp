@@ -381,7 +381,7 @@ class FilterMatrix {
   // The lower triangle of A for clique weights (pixel-major, as in CliqueWeights), with `ridge`
   // added to the diagonal.
   const Eigen::SparseMatrix<double>& assemble(const std::vector<double>& weights, double ridge) {
-    const int cols = unknowns_.index.cols;
+    const int cols = unknowns_.index.cols, rows = unknowns_.index.rows;
     double* values = matrix_.valuePtr();
     const int* starts = matrix_.outerIndexPtr();
     for (int column = 0; column < matrix_.outerSize(); ++column) {
@@ -391,8 +391,11 @@ class FilterMatrix {
         double sum = matrix_.innerIndexPtr()[k] == column ? ridge : 0;
         const double* product = offset.products.data();
         for (const cv::Point& t : offset.taps) {
-          const double* w = &weights[((p.y - t.y) * cols + p.x - t.x) * count_];
-          for (int i = 0; i < count_; ++i) sum += w[i] * product[i];
+          const cv::Point centre = p - t;  // of the clique; none outside the image
+          if (centre.x >= 0 && centre.y >= 0 && centre.x < cols && centre.y < rows) {
+            const double* w = &weights[(centre.y * cols + centre.x) * count_];
+            for (int i = 0; i < count_; ++i) sum += w[i] * product[i];
+          }
           product += count_;
         }
         values[k] = sum;

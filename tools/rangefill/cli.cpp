@@ -26,6 +26,15 @@ Mesh load_mesh(const std::string& path) {
   return std::move(result.mesh);
 }
 
+void add_patch_options(CLI::App* command, HoleSampleOptions& samples) {
+  command->add_option("--patches", samples.patches.count, "Patches per mesh")
+      ->capture_default_str();
+  command->add_option("--patch-size", samples.patches.size, "Patch size in pixels")
+      ->capture_default_str();
+  command->add_option("--seed", samples.patches.seed, "Seed of patches and masks")
+      ->capture_default_str();
+}
+
 void set_fallbacks(const std::string& list, RepairOptions& options) {
   options.fallback_front = options.fallback_least_area = false;
   if (list == "none") return;

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "rangefill/io.h"
+#include "rangefill/patches.h"
 #include "rangefill/pipeline.h"
 
 namespace rangefill::cli {
@@ -68,6 +69,9 @@ void add_patch_bench_command(CLI::App& app, Runner& runner);
 
 /// The meshes of ../shared/data/meshes that train-foe holds out and patch-bench scores on.
 inline const char* const kValidationMeshes = "bunny.ply,fandisk.ply,homer.ply";
+
+/// --patches, --patch-size and --seed of the commands that cut depth patches from meshes.
+void add_patch_options(CLI::App* command, HoleSampleOptions& samples);
 
 /// Sets RepairOptions' fallbacks from "front,least-area", "front", "least-area" or "none"; throws
 /// UsageError otherwise.

@@ -131,12 +131,7 @@ void add_patch_bench_command(CLI::App& app, Runner& runner) {
   sub->add_option("--inpainters", command->inpainters,
                   "Comma-separated back-ends; the first is compared with each")
       ->capture_default_str();
-  sub->add_option("--patches", command->samples.patches.count, "Patches per mesh")
-      ->capture_default_str();
-  sub->add_option("--patch-size", command->samples.patches.size, "Patch size in pixels")
-      ->capture_default_str();
-  sub->add_option("--seed", command->samples.patches.seed, "Seed of patches and masks")
-      ->capture_default_str();
+  add_patch_options(sub, command->samples);
   sub->add_option("--csv", command->csv, "Write one row per patch to this file");
   sub->add_flag("--json", command->json, "Print the summary as JSON");
   sub->callback([command, &runner] { runner = [command] { return run_patch_bench(*command); }; });

@@ -111,12 +111,7 @@ void add_train_foe_command(CLI::App& app, Runner& runner) {
   sub->add_option("--count", command->training.count, "Number of filters")->capture_default_str();
   sub->add_option("--iterations", command->training.iterations, "L-BFGS iterations")
       ->capture_default_str();
-  sub->add_option("--patches", command->samples.patches.count, "Patches per mesh")
-      ->capture_default_str();
-  sub->add_option("--patch-size", command->samples.patches.size, "Patch size in pixels")
-      ->capture_default_str();
-  sub->add_option("--seed", command->samples.patches.seed, "Seed of patches and masks")
-      ->capture_default_str();
+  add_patch_options(sub, command->samples);
   sub->add_option("--max-seconds", command->training.max_seconds,
                   "Stop after this many seconds (0: no limit)")
       ->capture_default_str();
