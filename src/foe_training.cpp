@@ -313,9 +313,14 @@ FoeTraining train_foe(const std::vector<HoleSample>& training,
   const FoeObjective held_out(validation, options.size, options.count, options.threads,
                               options.known_rms, options.initial_model);
   std::vector<double> theta = objective.initial_parameters();
+  // θ's unit depends on each objective's samples (without a start model), so the held-out loss is
+  // taken of the model θ stands for, re-expressed in the held-out objective's units.
+  const auto validation_loss = [&](const std::vector<double>& theta) {
+    return held_out.evaluate(held_out.parameters_of(objective.model(theta)), nullptr);
+  };
   FoeTraining result;
   result.training_loss_start = objective.evaluate(theta, nullptr);
-  result.validation_loss_start = held_out.evaluate(theta, nullptr);
+  result.validation_loss_start = validation_loss(theta);
 
   ceres::GradientProblemSolver::Options solver;
   solver.line_search_direction_type = ceres::LBFGS;
@@ -340,7 +345,7 @@ FoeTraining train_foe(const std::vector<HoleSample>& training,
 
   result.model = objective.model(theta);
   result.training_loss_end = objective.evaluate(theta, nullptr);
-  result.validation_loss_end = held_out.evaluate(theta, nullptr);
+  result.validation_loss_end = validation_loss(theta);
   result.iterations = static_cast<int>(summary.iterations.size()) - 1;
   result.stop = summary.message;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
