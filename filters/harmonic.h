@@ -4,6 +4,8 @@
 // masked gives nothing to go by and comes back 0.
 #pragma once
 
+#include <Eigen/SparseCore>
+
 #include "rangefill/inpainter.h"
 
 namespace rangefill {
@@ -13,5 +15,15 @@ class HarmonicInpainter : public Inpainter {
   std::string name() const override { return "harmonic"; }
   void inpaint(cv::InputArray depth, cv::InputArray mask, cv::OutputArray out) const override;
 };
+
+/// The discrete Laplace problem of the harmonic fill: L u = b over the pixels of `mask` (CV_8U,
+/// non-zero = unknown) in row-major order, L the 5-point Laplacian (degree on the diagonal, −1 to
+/// each masked 4-neighbour; the image border free) and b the sum of each pixel's known
+/// 4-neighbours in `values` (CV_64F). L is SPD when some pixel is known.
+struct LaplaceSystem {
+  Eigen::SparseMatrix<double> matrix;
+  Eigen::VectorXd rhs;
+};
+LaplaceSystem laplace_system(const cv::Mat& values, const cv::Mat& mask);
 
 }  // namespace rangefill

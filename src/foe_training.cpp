@@ -60,7 +60,7 @@ double shifted_dot(const cv::Mat& a, const cv::Mat& b, const cv::Rect& valid, cv
 // The MAP estimate the objective scores: iterations until ∇_u E vanishes, as the implicit gradient
 // assumes (foe_map ends with Newton steps, which get there); a tolerance on E would stop them
 // where E no longer changes but ∇_u E is still 1e-5.
-constexpr FoeMapOptions kTrainingMap{200, 0, 1e-11};
+constexpr FoeMapOptions kTrainingMap{200, 0, 1e-11, FoeMapMethod::newton};
 
 // The loss of one sample and, when `gradient` is given, its derivatives with respect to the taps
 // (count × size², row-major) and α (count), added to `gradient`. At the MAP x*, ∇_u E(x*, θ) = 0,
