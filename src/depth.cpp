@@ -163,7 +163,8 @@ cv::Mat fill_from_source(const cv::Mat& z, const cv::Mat& hole, const cv::Mat& s
   cv::Mat normalised = (inverse - lowest) * scale;
   normalised.copyTo(image.depth, source);
 
-  const Trend trend = fit_trend(image, options.trend, options.trend_ring);
+  // Perspective pixels are no length unit: a sphere (or auto) trend is fitted as a quadric.
+  const Trend trend = fit_trend(image.depth, image.labels, options.trend, options.trend_ring);
   const cv::Mat trend_image =
       trend.kind == TrendKind::none ? cv::Mat::zeros(z.size(), CV_32F) : trend.image(z.size());
   cv::Mat restored;

@@ -91,16 +91,21 @@ bool fill_intersects(const SurfaceContext& surface, const Fill& fill) {
   return count_self_intersections(own, all) > 0;
 }
 
-// The trend of `values` (over the known pixels of `labels`) removed, the residual inpainted under
-// the hole mask, the trend added back. `fitted` receives the trend actually fitted.
+// The trend of `values` (over the known pixels of `labels`; heights of `height_unit` pixels, or
+// 0) removed, the residual inpainted under the hole mask, the trend added back. `fitted` receives
+// the trend actually fitted.
 cv::Mat inpaint_residual(const cv::Mat& values, const cv::Mat& labels, const cv::Mat& mask,
                          const Inpainter& inpainter, const RepairOptions& options,
-                         TrendKind& fitted) {
-  const Trend trend = fit_trend(values, labels, options.trend, options.trend_ring);
+                         double height_unit, TrendKind& fitted) {
+  const Trend trend = fit_trend(values, labels, options.trend, options.trend_ring, height_unit);
   fitted = trend.kind;
   const cv::Mat trend_image = trend.image(values.size());
-  cv::Mat restored;
-  inpainter.inpaint(values - trend_image, mask, restored);
+  // Outside the zone the image holds the nearest zone value, no surface: there the residual is 0
+  // (the trend is the best guess), else back-ends that read beyond the rim (mls) take the gap
+  // between a flat extension and a curved trend for surface.
+  cv::Mat residual = values - trend_image, restored;
+  residual.setTo(0, labels == kOutsidePixel);
+  inpainter.inpaint(residual, mask, restored);
   return restored + trend_image;
 }
 
@@ -111,7 +116,7 @@ cv::Mat inpaint_colors(const RangeImage& image, const cv::Mat& mask, const Inpai
   cv::split(image.color, channels);
   for (cv::Mat& channel : channels) {
     TrendKind fitted = TrendKind::none;
-    channel = inpaint_residual(channel, image.labels, mask, inpainter, options, fitted);
+    channel = inpaint_residual(channel, image.labels, mask, inpainter, options, 0, fitted);
   }
   cv::Mat color;
   cv::merge(channels, color);
@@ -142,8 +147,8 @@ Fill fill_through_plane(const SurfaceContext& surface, const BoundaryLoop& hole,
 
   report.stages.image += lap(stage);
 
-  const cv::Mat restored =
-      inpaint_residual(image.depth, image.labels, mask, inpainter, options, report.trend);
+  const cv::Mat restored = inpaint_residual(image.depth, image.labels, mask, inpainter, options,
+                                            1 / (image.depth_scale * image.step), report.trend);
   const cv::Mat restored_color =
       image.color.empty() ? cv::Mat() : inpaint_colors(image, mask, inpainter, options);
   report.stages.inpainting += lap(stage);

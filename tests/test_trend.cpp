@@ -88,6 +88,30 @@ TEST(FitTrend, RecoversAPlaneExactly) {
   EXPECT_LT(curved.coefficients.tail<3>().norm(), 1e-9);
 }
 
+// A sphere of radius 40 pixels (heights in pixels: step and depth scale 1) seen from above.
+double sphere(int row, int col) {
+  return -20 + std::sqrt(1600.0 - (row - 18) * (row - 18) - (col - 27) * (col - 27));
+}
+
+// The sphere trend recovers a sphere's height field from the ring, inside the hole as well (to the
+// float rounding of the values); the automatic trend takes it over the quadric there, and the
+// quadric over the sphere on a quadric's height field.
+TEST(FitTrend, RecoversASphereAndChoosesItOnlyOnASphere) {
+  const RangeImage cap = image_with_disk(sphere);
+  const Trend fitted = fit_trend(cap, TrendKind::sphere, 3);
+  ASSERT_EQ(fitted.kind, TrendKind::sphere);
+  EXPECT_NEAR(fitted.sphere[3] * fitted.scale, 40, 1e-3);
+  EXPECT_EQ(fitted.side, 1);
+  EXPECT_LT(worst_error(fitted, sphere), 1e-3);
+  EXPECT_GT(worst_error(fit_trend(cap, TrendKind::quadric, 3), sphere), 10 * 1e-3);
+  EXPECT_EQ(fit_trend(cap, TrendKind::automatic, 3).kind, TrendKind::sphere);
+  EXPECT_EQ(fit_trend(image_with_disk(quadric), TrendKind::automatic, 3).kind, TrendKind::quadric);
+  // Values that are not heights (height_unit 0, a colour channel) get the quadric.
+  EXPECT_EQ(fit_trend(cap.depth, cap.labels, TrendKind::automatic, 3).kind, TrendKind::quadric);
+  for (TrendKind kind : {TrendKind::sphere, TrendKind::automatic})
+    EXPECT_EQ(trend_from_name(trend_name(kind)), kind);
+}
+
 // Only known pixels within `ring` pixels of the mask are fitted: a quadric outside the ring does
 // not disturb a plane inside it (ring 3: pixels at distance > 3 follow another surface).
 TEST(FitTrend, FitsOnlyTheRingAroundTheHole) {

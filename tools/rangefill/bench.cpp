@@ -23,7 +23,7 @@ using nlohmann::json;
 
 struct BenchCommand {
   std::vector<std::string> meshes;
-  std::string inpainters, baselines, trends = "quadric", csv, save, out, filler = "plane";
+  std::string inpainters, baselines, trends = "auto", csv, save, out, filler = "plane";
   std::string fallback = "front,least-area", shapes = "disk,elongated";
   PunchOptions punch = [] {
     PunchOptions options;
@@ -425,7 +425,8 @@ void add_bench_command(CLI::App& app, Runner& runner) {
                   "mls: alpha of the weights exp(-alpha d^2)/d^2 (eq. 6), d in pixels")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 100.0));
-  sub->add_option("--trends", command->trends, "Comma-separated trends (none, plane, quadric)")
+  sub->add_option("--trends", command->trends,
+                  "Comma-separated trends (none, plane, quadric, sphere, auto)")
       ->capture_default_str();
   sub->add_option("--filler", command->filler, "plane or front (see rangefill repair --help)")
       ->capture_default_str()

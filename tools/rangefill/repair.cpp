@@ -19,7 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct RepairCommand {
-  std::string input, output, report, debug_dir, holes = "all", trend = "quadric", filler = "plane";
+  std::string input, output, report, debug_dir, holes = "all", trend = "auto", filler = "plane";
   std::string fallback = "front,least-area", mesher = "greedy";
   bool in_place = false, json = false, ascii = false, fill_all = false;
   RepairOptions options;
@@ -252,9 +252,10 @@ void add_repair_command(CLI::App& app, Runner& runner) {
       ->check(CLI::Range(1.0, 100.0));
   sub->add_option(
          "--trend", command->trend,
-         "Surface removed before inpainting and added back: none (the paper), plane, quadric")
+         "Surface removed before inpainting and added back: none (the paper), plane, quadric, "
+         "sphere, auto (the sphere where it fits the hole's surroundings better than the quadric)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"none", "plane", "quadric"}));
+      ->check(CLI::IsMember({"none", "plane", "quadric", "sphere", "auto"}));
   sub->add_option("--holes", command->holes,
                   "Holes to fill: all, or ids as listed by `rangefill holes`")
       ->capture_default_str();
