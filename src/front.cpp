@@ -55,7 +55,10 @@ class Front {
     int stalls = 0, stagnant = 0;
     double shortest = front_length();
     while (size_ > 3) {
-      const bool progress = make_convex(phi) | add_vertices(depth_scale) | make_convex(phi);
+      // All three steps run, in this order (the operands of a | b | c are not sequenced).
+      bool progress = make_convex(phi);
+      progress |= add_vertices(depth_scale);
+      progress |= make_convex(phi);
       // A front that does not get shorter extrudes the surface (round a thin tube's end, say)
       // instead of closing it; one that stalls cannot go on. Either is closed at once.
       const double length = front_length();

@@ -532,6 +532,7 @@ TEST(Cli, InterruptedRepairLeavesNoTemporaryOrPartialFile) {
 
   fs::remove(out);
   const pid_t repairing = spawn();
+  ASSERT_GT(repairing, 0);  // else kill() would signal our process group, the loop below spin
   std::this_thread::sleep_for(std::chrono::duration<double>(seconds / 3));
   ::kill(repairing, SIGINT);
   EXPECT_EQ(exit_code(repairing), 130);
@@ -544,6 +545,7 @@ TEST(Cli, InterruptedRepairLeavesNoTemporaryOrPartialFile) {
   for (int attempt = 0; attempt < 5 && !interrupted_writing; ++attempt) {
     fs::remove(out);
     const pid_t pid = spawn();
+    ASSERT_GT(pid, 0);
     bool caught = false;
     while (!caught && !exited(pid)) {
       caught = writing(pid);

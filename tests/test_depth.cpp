@@ -366,11 +366,12 @@ TEST(DepthFiles, DamagedPngsAreRefusedWithoutLibpngOutput) {
   };
   for (const auto& [name, bytes] : cases) {
     SCOPED_TRACE(name);
-    write_file_atomically(bytes, dir / name);
+    const fs::path path = dir / name;  // a lambda may not capture a structured binding in C++17
+    write_file_atomically(bytes, path);
     ::testing::internal::CaptureStderr();
-    const std::string message = message_of([&] { read_depth_image(dir / name); });
+    const std::string message = message_of([&] { read_depth_image(path); });
     EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
-    EXPECT_EQ(message.rfind((dir / name).string() + ": corrupt PNG: ", 0), 0u) << message;
+    EXPECT_EQ(message.rfind(path.string() + ": corrupt PNG: ", 0), 0u) << message;
     EXPECT_EQ(message.find('\n'), std::string::npos);
   }
   EXPECT_TRUE(bit_identical(read_depth_image(dir / "full.png"), depth));

@@ -360,8 +360,9 @@ TEST(HardHoles, HoleOverASharpEdgeOrCorner) {
        {std::tuple{"edge", Vec3(0.5, 1, 1), radius / std::sqrt(2.0)},
         std::tuple{"corner", Vec3(1, 1, 1), radius / std::sqrt(3.0)}}) {
     SCOPED_TRACE(name);
+    const Vec3 around = centre;  // a lambda may not capture a structured binding in C++17
     const Mesh holed =
-        testing::remove_faces(box, [&](const Vec3& p) { return (p - centre).norm() < radius; });
+        testing::remove_faces(box, [&](const Vec3& p) { return (p - around).norm() < radius; });
     const HardOutcome outcome = repair_hard_case(box, holed, {}, std::string("cube ") + name);
     EXPECT_LT(outcome.worst, 0.5 * flat_cut / d_m);
   }
