@@ -309,8 +309,13 @@ HardOutcome repair_hard_case(const Mesh& truth, const Mesh& holed, const RepairO
                [&](int f) { return !kept.count(truth.triangles[f]); });
   outcome.worst = surface_distance(mesh, generated, truth, all, d_m / 4).from_first / d_m;
   outcome.hausdorff = surface_distance(mesh, generated, truth, removed, d_m / 4).hausdorff / d_m;
-  std::printf("%s: %s; generated faces within %.3f d_m of the surface, H %.3f d_m\n", name.c_str(),
-              methods.c_str(), outcome.worst, outcome.hausdorff);
+  double seconds = 0;
+  for (const HoleReport& hole : outcome.result.holes) seconds += hole.seconds;
+  std::printf(
+      "%s: %s; generated faces within %.3f d_m of the surface, H %.3f d_m, mean edge %.2f d_m, "
+      "%.3f s\n",
+      name.c_str(), methods.c_str(), outcome.worst, outcome.hausdorff,
+      mean_edge_length(mesh, generated) / d_m, seconds);
   return outcome;
 }
 
