@@ -715,13 +715,12 @@ class BlockedEnergy {
 // foe_map's lbfgs method on x (the unknowns zeroed, some pixel known). Ceres' GradientProblem
 // solver has no preconditioner hook (a change of variables would need a triangular factor of
 // L + tL², a 13-point matrix that alone costs most of the time budget), hence the loop here.
-cv::Mat lbfgs_map(const FoeModel& model, cv::Mat x, const cv::Mat& mask,
-                  const FoeMapOptions& options) {
+cv::Mat lbfgs_map(const FoeModel& model, const LaplacianPolynomial& polynomial, cv::Mat x,
+                  const cv::Mat& mask, const FoeMapOptions& options) {
   constexpr int kMemory = 10;       // correction pairs kept
   constexpr double kArmijo = 1e-4;  // sufficient decrease
   const Unknowns unknowns(mask);
   const int n = static_cast<int>(unknowns.pixels.size());
-  const LaplacianPolynomial polynomial = fit_laplacian_polynomial(model);
   const LaplaceSystem laplace = laplace_system(x, mask);
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> laplacian(laplace.matrix);
   Eigen::SparseMatrix<double> shifted = polynomial.t * laplace.matrix;
@@ -806,16 +805,22 @@ cv::Mat lbfgs_map(const FoeModel& model, cv::Mat x, const cv::Mat& mask,
 cv::Mat lbfgs_map_by_groups(const FoeModel& model, cv::Mat x, const cv::Mat& mask,
                             const FoeMapOptions& options) {
   const int reach = 2 * (model.size / 2);
-  cv::Mat grown, labels;
+  const LaplacianPolynomial polynomial = fit_laplacian_polynomial(model);
+  cv::Mat grown, labels, stats, centroids;
   cv::dilate(mask, grown, cv::Mat::ones(reach + 1, reach + 1, CV_8U));
-  const int groups = cv::connectedComponents(grown, labels, 8, CV_32S);
+  const int groups = cv::connectedComponentsWithStats(grown, labels, stats, centroids, 8, CV_32S);
   for (int group = 1; group < groups; ++group) {
-    const cv::Mat unknowns = (labels == group) & mask;
-    cv::Rect box = cv::boundingRect(unknowns);
-    box = cv::Rect(box.x - reach, box.y - reach, box.width + 2 * reach, box.height + 2 * reach) &
+    // The group's unknowns lie within its grown component's box; only there is it searched.
+    const cv::Rect component(
+        stats.at<int>(group, cv::CC_STAT_LEFT), stats.at<int>(group, cv::CC_STAT_TOP),
+        stats.at<int>(group, cv::CC_STAT_WIDTH), stats.at<int>(group, cv::CC_STAT_HEIGHT));
+    cv::Rect box = cv::boundingRect((labels(component) == group) & mask(component));
+    box = cv::Rect(component.x + box.x - reach, component.y + box.y - reach, box.width + 2 * reach,
+                   box.height + 2 * reach) &
           cv::Rect(0, 0, x.cols, x.rows);
-    const cv::Mat part = lbfgs_map(model, x(box).clone(), unknowns(box), options);
-    part.copyTo(x(box), unknowns(box));
+    const cv::Mat unknowns = (labels(box) == group) & mask(box);
+    const cv::Mat part = lbfgs_map(model, polynomial, x(box).clone(), unknowns, options);
+    part.copyTo(x(box), unknowns);
   }
   return x;
 }
