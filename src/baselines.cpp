@@ -62,6 +62,31 @@ bool fill_loop(SurfaceMesh& surface, const BoundaryLoop& loop, const BaselineOpt
 
 }  // namespace
 
+std::vector<Triangle> triangulate_hole_liepa(const std::vector<Vec3>& loop,
+                                             const std::vector<Vec3>& third_points) {
+  CGAL_precondition(third_points.size() == loop.size());
+  auto points_of = [](const std::vector<Vec3>& positions) {
+    std::vector<Kernel::Point_3> points;
+    for (const Vec3& p : positions) points.emplace_back(p.x(), p.y(), p.z());
+    return points;
+  };
+  std::vector<CGAL::Triple<int, int, int>> patch;
+  pmp::triangulate_hole_polyline(
+      points_of(loop), points_of(third_points), std::back_inserter(patch),
+      CGAL::parameters::use_2d_constrained_delaunay_triangulation(false));
+  std::vector<Triangle> triangles;
+  bool along_loop = false;  // whether the patch uses the edge 0 → 1 as the loop runs
+  for (const auto& t : patch) {
+    const Triangle triangle = {t.first, t.second, t.third};
+    for (int k = 0; k < 3; ++k) along_loop |= triangle[k] == 0 && triangle[(k + 1) % 3] == 1;
+    triangles.push_back(triangle);
+  }
+  if (along_loop) {
+    for (Triangle& t : triangles) std::swap(t[1], t[2]);
+  }
+  return triangles;
+}
+
 std::string baseline_name(Baseline baseline) {
   return baseline == Baseline::cgal_fair ? "cgal-fair" : "cgal-triangulate";
 }

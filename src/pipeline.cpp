@@ -9,6 +9,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "rangefill/baselines.h"
 #include "rangefill/complex_hole.h"
 #include "rangefill/errors.h"
 #include "rangefill/front.h"
@@ -222,11 +223,43 @@ Fill fill_through_front(const SurfaceContext& surface, const BoundaryLoop& hole,
   return fill;
 }
 
-// The last resort: the hole's own loop triangulated by least area, no new vertex (what MeshLab's
-// Close Holes does), accepted only if manifold and free of intersections.
-Fill fill_by_least_area(const SurfaceContext& surface, const BoundaryLoop& hole) {
-  std::vector<Vec3> loop;
-  for (int v : hole.vertices) loop.push_back(surface.mesh.positions[v]);
+// The last resort: the hole's own loop triangulated without new vertices (what MeshLab's Close
+// Holes does): by Liepa's weight, whose dihedral angles against the faces outside keep the patch
+// from folding into the surface, else by least area avoiding the chords the mesh has; the first
+// that is manifold and free of intersections. `method` receives which.
+Fill fill_by_least_area(const SurfaceContext& surface, const BoundaryLoop& hole,
+                        std::string& method) {
+  const int n = static_cast<int>(hole.vertices.size());
+  std::vector<Vec3> loop, third_points;
+  for (int k = 0; k < n; ++k) {
+    const int a = hole.vertices[k], b = hole.vertices[(k + 1) % n];
+    loop.push_back(surface.mesh.positions[a]);
+    const int along = find_halfedge(surface.mesh, surface.topology, a, b);
+    if (along < 0) throw ProcessingError("hole " + std::to_string(hole.id) + ": not a border loop");
+    const Triangle& outside = surface.mesh.triangles[halfedge_face(along)];
+    for (int v : outside) {
+      if (v != a && v != b) third_points.push_back(surface.mesh.positions[v]);
+    }
+  }
+  Fill fill;
+  fill.boundary = hole.vertices;
+  std::string refusal;
+  auto accepted = [&](std::vector<Triangle> triangles) {
+    fill.triangles = std::move(triangles);
+    try {
+      if (fill.triangles.empty()) throw ProcessingError("no triangulation");
+      validate_fill(surface.mesh, surface.topology, hole, fill);
+      if (fill_intersects(surface, fill)) {
+        throw ProcessingError("it would intersect the surface or itself");
+      }
+      return true;
+    } catch (const ProcessingError& error) {
+      refusal += std::string(refusal.empty() ? "" : "; ") + method + ": " + error.what();
+      return false;
+    }
+  };
+  method = "Liepa";
+  if (accepted(triangulate_hole_liepa(loop, third_points))) return fill;
   std::set<std::pair<int, int>> forbidden;  // chords the mesh already has
   for (size_t i = 0; i < hole.vertices.size(); ++i) {
     for (size_t j = i + 2; j < hole.vertices.size(); ++j) {
@@ -237,18 +270,9 @@ Fill fill_by_least_area(const SurfaceContext& surface, const BoundaryLoop& hole)
       }
     }
   }
-  Fill fill;
-  fill.boundary = hole.vertices;
-  fill.triangles = triangulate_hole_polygon(loop, forbidden);
-  if (fill.triangles.empty()) {
-    throw ProcessingError("hole " + std::to_string(hole.id) + ": no least-area triangulation");
-  }
-  validate_fill(surface.mesh, surface.topology, hole, fill);
-  if (fill_intersects(surface, fill)) {
-    throw ProcessingError("hole " + std::to_string(hole.id) +
-                          ": the least-area patch would intersect the surface or itself");
-  }
-  return fill;
+  method = "least area";
+  if (accepted(triangulate_hole_polygon(loop, forbidden))) return fill;
+  throw ProcessingError("hole " + std::to_string(hole.id) + ": no patch of its loop: " + refusal);
 }
 
 }  // namespace
@@ -303,8 +327,7 @@ Fill fill_hole(const SurfaceContext& surface, const BoundaryLoop& hole, const In
   }
   if (!fill && options.fallback_least_area) {
     try {
-      report.method = "least area";
-      fill = fill_by_least_area(surface, hole);
+      fill = fill_by_least_area(surface, hole, report.method);
     } catch (const ProcessingError& error) {
       failure += (failure.empty() ? "" : "; ") + std::string(error.what());
     }

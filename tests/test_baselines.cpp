@@ -11,6 +11,7 @@
 #include "rangefill/holes.h"
 #include "rangefill/metrics.h"
 #include "rangefill/punch.h"
+#include "rangefill/topology.h"
 #include "support.h"
 
 namespace rangefill {
@@ -71,6 +72,35 @@ TEST(FillHolesCgal, TriangulationClosesBothHoles) {
   EXPECT_EQ(result.restoration_matrix[1][0], 0);
   EXPECT_EQ(result.restoration_matrix[1][1], b - 3);
   EXPECT_EQ(result.restoration_matrix[1][2], b - 2);
+}
+
+// Liepa's triangulation of each loop, from any starting vertex, closes the sphere with b − 2
+// triangles oriented like the surface (each loop edge reversed) and without self-intersection.
+TEST(TriangulateHoleLiepa, ClosesEachLoopOrientedLikeTheSurface) {
+  const Mesh mesh = sphere_with_two_holes();
+  const MeshTopology topology = build_topology(mesh);
+  Mesh closed = mesh;
+  for (const BoundaryLoop& loop : find_holes(mesh, topology).loops) {
+    const int n = static_cast<int>(loop.vertices.size());
+    const int start = loop.id == 0 ? 0 : n / 2;  // the second loop from elsewhere on it
+    std::vector<int> vertices;
+    std::vector<Vec3> points, third_points;
+    for (int k = 0; k < n; ++k) {
+      const int a = loop.vertices[(start + k) % n], b = loop.vertices[(start + k + 1) % n];
+      vertices.push_back(a);
+      points.push_back(mesh.positions[a]);
+      for (int v : mesh.triangles[halfedge_face(find_halfedge(mesh, topology, a, b))]) {
+        if (v != a && v != b) third_points.push_back(mesh.positions[v]);
+      }
+    }
+    const std::vector<Triangle> patch = triangulate_hole_liepa(points, third_points);
+    EXPECT_EQ(static_cast<int>(patch.size()), n - 2) << "loop " << loop.id;
+    for (const Triangle& t : patch) {
+      add_face(closed, {vertices[t[0]], vertices[t[1]], vertices[t[2]]}, loop.id);
+    }
+  }
+  EXPECT_TRUE(check_manifold(closed).closed_manifold());
+  EXPECT_EQ(count_self_intersections(closed, faces_of_hole(closed, kAnyHole)), 0);
 }
 
 // Refined and faired, the patch of the one loop asked for gets vertices of its own, near the sphere

@@ -40,6 +40,15 @@ struct BaselineOptions {
 /// ProcessingError naming the loop if CGAL fails on one.
 RepairResult fill_holes_cgal(const Mesh& mesh, const BaselineOptions& options);
 
+/// Liepa's minimum-weight triangulation of the closed polygon `loop` (3D) by CGAL's
+/// triangulate_hole_polyline: the largest dihedral angle first, then the area, the angles
+/// across the loop's edges measured against the faces outside, whose third corners
+/// `third_points` gives (one per edge (k, k + 1)). Searched among the faces of the 3D Delaunay
+/// triangulation of the loop, failing that among all triangles of it. Triangles index `loop`
+/// and use each edge (k, k + 1) reversed, like triangulate_hole_polygon's. Empty when none.
+std::vector<Triangle> triangulate_hole_liepa(const std::vector<Vec3>& loop,
+                                             const std::vector<Vec3>& third_points);
+
 /// "cgal-fair", "cgal-triangulate".
 std::string baseline_name(Baseline baseline);
 /// The baseline called `name`; throws InvalidInput otherwise, listing the names.

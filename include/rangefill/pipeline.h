@@ -52,8 +52,8 @@ struct HoleReport {
   } stages;
   std::vector<int> other_holes;  // other loops the zone reached
   bool filled = false;
-  std::string method;   // "plane", "front", "plane, in part" (VI-C: the rest is a new hole) or
-                        // "least area"
+  std::string method;   // "plane", "front", "plane, in part" (VI-C: the rest is a new hole),
+                        // "Liepa" or "least area"
   std::string failure;  // why not, when not filled
 };
 
@@ -71,7 +71,8 @@ enum class Filler { plane, front };
 struct RepairOptions {
   Filler filler = Filler::plane;
   bool fallback_front = true;       // holes the planes cannot fill go to the advancing front
-  bool fallback_least_area = true;  // ... and then to a least-area patch without new vertices
+  bool fallback_least_area = true;  // ... and then to a patch of the loop without new vertices
+                                    // (Liepa's weight, else least area)
   FrontOptions front;
   MlsOptions mls;
   std::string inpainter = "foe";  // the depth-trained FoE: best on the benchmark (README)
@@ -128,8 +129,8 @@ struct SurfaceContext {
 
 /// Fills one hole. With Filler::plane: Sections V–VIII on the best acceptable plane, else the next
 /// ones; then, if allowed, the advancing front; then a part of the hole (VI-C, complex_hole.h) with
-/// a zone and planes of its own, the rest left to the next pass; then, if allowed, a least-area
-/// patch of the loop. Reads
+/// a zone and planes of its own, the rest left to the next pass; then, if allowed, a patch of the
+/// loop without new vertices (Liepa's weight, triangulate_hole_liepa, else least area). Reads
 /// `surface` only; safe to call concurrently. `report` receives the figures of the stages it
 /// reached. Throws ProcessingError with the reasons when no filler succeeds (a fill is refused when
 /// it would not be manifold or would intersect the surface or itself).
