@@ -81,7 +81,8 @@ struct FoeMapOptions {
 ///  - lbfgs: L-BFGS whose initial inverse Hessian is (L + t·L²)⁻¹ scaled, L the 5-point Laplacian
 ///    over the unknowns: t is fitted to the model so that the polynomial follows the spectrum of
 ///    the Gaussian field with the model's filters (spread ~6 against ~44 for L alone on the
-///    shipped models), and both factors are sparse 5-point matrices. Backtracking (Armijo) line
+///    shipped models); (L + tL²)⁻¹ = (I + tL)⁻¹L⁻¹ is one sparse 5-point factorisation and a
+///    Chebyshev polynomial in the well-conditioned I + tL. Backtracking (Armijo) line
 ///    search; E and ∇E by blocked single-precision matrix products, summed in double.
 ///  - newton: steps x ← x − M⁻¹∇E, reusing each sparse Cholesky factorisation (CHOLMOD) while it
 ///    makes fast progress: M is first the matrix of the Gaussian field with the same filters and
