@@ -320,16 +320,22 @@ Fill fill_hole(const SurfaceContext& surface, const BoundaryLoop& hole, const In
       failure += (failure.empty() ? "" : "; ") + std::string(error.what());
     }
   }
+  bool in_part = false;
   if (!fill && options.filler == Filler::plane) {
     report.method = "plane, in part";
     fill = fill_part_through_planes(surface, hole, search.best_frame, inpainter, options, report,
                                     failure);
+    in_part = fill.has_value();
   }
-  if (!fill && options.fallback_least_area) {
+  // In the last pass the rest of a part would stay open: a patch of the whole loop comes first.
+  const bool last_pass = report.pass == options.passes - 1;
+  if ((!fill || (in_part && last_pass)) && options.fallback_least_area) {
+    const std::string part_method = report.method;
     try {
       fill = fill_by_least_area(surface, hole, report.method);
     } catch (const ProcessingError& error) {
       failure += (failure.empty() ? "" : "; ") + std::string(error.what());
+      report.method = part_method;
     }
   }
   if (!fill) throw ProcessingError(failure);

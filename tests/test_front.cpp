@@ -153,5 +153,32 @@ TEST(FrontFiller, ClosesAHoleWrappedRoundATube) {
   }
 }
 
+// In the last pass a part's rest would stay open, so the whole loop's patch (Liepa's) comes
+// before the part: with one pass and no front, the tube's band is closed all the same, where the
+// part alone leaves a loop open.
+TEST(FrontFiller, LastPassPatchesTheWholeLoopRatherThanAPart) {
+  const Mesh cut = testing::remove_faces(capped_tube(0.2, 2, 24, 40), [](const Vec3& p) {
+    return std::abs(p.z()) < 0.15 && p.x() > -0.15;
+  });
+  RepairOptions one_pass;
+  one_pass.passes = 1;
+  one_pass.fallback_front = false;
+  one_pass.fallback_least_area = false;
+  const RepairResult part = repair(cut, one_pass);
+  ASSERT_EQ(part.holes.size(), 1u);
+  EXPECT_EQ(part.holes[0].method, "plane, in part");
+  EXPECT_EQ(part.holes_left, 1);
+
+  one_pass.fallback_least_area = true;
+  const RepairResult whole = repair(cut, one_pass);
+  ASSERT_EQ(whole.holes.size(), 1u);
+  EXPECT_TRUE(whole.holes[0].filled) << whole.holes[0].failure;
+  EXPECT_EQ(whole.holes[0].method, "Liepa");
+  EXPECT_EQ(whole.holes_left, 0);
+  testing::expect_input_preserved(cut, whole.mesh);
+  EXPECT_TRUE(check_manifold(whole.mesh).closed_manifold());
+  EXPECT_EQ(count_self_intersections(whole.mesh, faces_of_hole(whole.mesh, kAnyHole)), 0);
+}
+
 }  // namespace
 }  // namespace rangefill
