@@ -20,7 +20,9 @@ namespace {
 // (1, u, v, u², v², uv), is one of them), then its value f times each entry of b.
 constexpr int kMoments = 15;
 constexpr int kTerms = kMoments + 6;
-using Terms = std::array<double, kTerms>;
+// Stored with zeros up to a multiple of 4, so that the sums run in whole AVX2 vectors of doubles.
+constexpr int kStoredTerms = (kTerms + 3) / 4 * 4;
+using Terms = std::array<double, kStoredTerms>;
 
 // kProduct[j][k]: the moment that is b_j·b_k.
 constexpr int kProduct[6][6] = {{0, 1, 2, 3, 4, 5},    {1, 3, 5, 6, 8, 7},
@@ -107,7 +109,7 @@ __attribute__((target_clones("avx2", "default"))) void accumulate(const RingPixe
   for (const RingPixel* r = first; r != last; ++r) {
     const double w =
         weight[static_cast<size_t>(std::abs(r->row - p.y)) * width + std::abs(r->col - p.x)];
-    for (int k = 0; k < kTerms; ++k) total[k] += w * r->terms[k];
+    for (int k = 0; k < kStoredTerms; ++k) total[k] += w * r->terms[k];
   }
   sum = total;
 }
