@@ -1,9 +1,11 @@
 // The advancing front (front.h), directly on a flat hole and through repair(): a spherical cap
-// filled by the front, and a hole round a thin tube that no projection plane can unfold.
+// filled by the front, a hole round a thin tube that no projection plane can unfold, and the
+// last pass's patch of a whole loop.
 #include "rangefill/front.h"
 
 #include <cmath>
 #include <cstring>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -53,6 +55,18 @@ TEST(FillByFront, FlatHoleIsCoveredExactly) {
   EXPECT_NEAR(area, hole.area, 1e-9 * hole.area);
 }
 
+// The one hole of `cut` filled by `method`: nothing left open, the input kept bit for bit, the
+// result a closed manifold.
+void expect_one_hole_closed_by(const Mesh& cut, const RepairResult& result,
+                               const std::string& method) {
+  ASSERT_EQ(result.holes.size(), 1u);
+  EXPECT_TRUE(result.holes[0].filled) << result.holes[0].failure;
+  EXPECT_EQ(result.holes[0].method, method);
+  EXPECT_EQ(result.holes_left, 0);
+  testing::expect_input_preserved(cut, result.mesh);
+  EXPECT_TRUE(check_manifold(result.mesh).closed_manifold());
+}
+
 // A cap of 40° cut from a sphere, filled by the front from the start: the result is a closed
 // manifold, every new vertex lies within 0.05 d_m of the sphere (0.007 d_m measured: the MLS
 // surface of the zone follows the sphere), and no new face intersects anything.
@@ -64,12 +78,7 @@ TEST(FrontFiller, ClosesASphereCapOnTheSphere) {
   RepairOptions options;
   options.filler = Filler::front;
   const RepairResult result = repair(cut, options);
-  ASSERT_EQ(result.holes.size(), 1u);
-  EXPECT_TRUE(result.holes[0].filled) << result.holes[0].failure;
-  EXPECT_EQ(result.holes[0].method, "front");
-  EXPECT_EQ(result.holes_left, 0);
-  testing::expect_input_preserved(cut, result.mesh);
-  EXPECT_TRUE(check_manifold(result.mesh).closed_manifold());
+  expect_one_hole_closed_by(cut, result, "front");
   ASSERT_GT(result.mesh.vertex_count(), cut.vertex_count() + 100);
   for (int v = cut.vertex_count(); v < result.mesh.vertex_count(); ++v) {
     EXPECT_LT(std::abs(result.mesh.positions[v].norm() - 1), 0.05 * mean_edge) << "vertex " << v;
@@ -171,12 +180,7 @@ TEST(FrontFiller, LastPassPatchesTheWholeLoopRatherThanAPart) {
 
   one_pass.fallback_least_area = true;
   const RepairResult whole = repair(cut, one_pass);
-  ASSERT_EQ(whole.holes.size(), 1u);
-  EXPECT_TRUE(whole.holes[0].filled) << whole.holes[0].failure;
-  EXPECT_EQ(whole.holes[0].method, "Liepa");
-  EXPECT_EQ(whole.holes_left, 0);
-  testing::expect_input_preserved(cut, whole.mesh);
-  EXPECT_TRUE(check_manifold(whole.mesh).closed_manifold());
+  expect_one_hole_closed_by(cut, whole, "Liepa");
   EXPECT_EQ(count_self_intersections(whole.mesh, faces_of_hole(whole.mesh, kAnyHole)), 0);
 }
 
