@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets of tests/fuzz with clang into build-fuzz/ and runs each (the mesh
-# readers and the depth reader's PNG check) for FUZZ_SECONDS (default 60) from the seed corpus
+# readers and the depth reader's PNG check) for FUZZ_SECONDS (default 45) from the seed corpus
 # tests/fuzz/corpus/<format>, two at a time.
 # New inputs go to build-fuzz/corpus/, findings to build-fuzz/findings/<format>/; a finding fails.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="$root/build-fuzz"
-seconds="${FUZZ_SECONDS:-60}"
+seconds="${FUZZ_SECONDS:-45}"
 "$root/scripts/install-deps.sh"
 cmake -S "$root/tests/fuzz" -B "$build" -DCMAKE_CXX_COMPILER=clang++-14 >/dev/null
 cmake --build "$build" -j "$(nproc)" >/dev/null

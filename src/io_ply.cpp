@@ -497,6 +497,9 @@ void read_faces(const PlyElement& element, BodyReader& body, ReadResult& result,
       if (indices < 0 && is_integer(property.type)) indices = static_cast<int>(i);
     } else if (!property.is_list && property.name == kProvenanceProperty) {
       hole = static_cast<int>(i);
+    } else if (property.name == "vertex_indices" || property.name == "vertex_index") {
+      // Carried through, it would be written beside the index list under the list's own name.
+      fail(name, "face property '" + property.name + "' is not an integer list of vertices");
     } else if (!property.is_list) {
       extra_index[i] = static_cast<int>(mesh.face_properties.size());
       mesh.face_properties.push_back({property.name, property.type, {}});

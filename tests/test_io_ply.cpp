@@ -194,6 +194,14 @@ TEST(PlyIo, MalformedFilesGiveOneLineErrors) {
                        "property float y\nproperty float z\nend_header\n0 zero 0\n")
                 .find("vertex 0: expected a number, found 'zero'"),
             std::string::npos);
+  // A scalar under the index list's name would be written beside the list, under the same name.
+  std::string scalar_indices = header;
+  scalar_indices.replace(scalar_indices.find("property list uchar int vertex_indices"), 38,
+                         "property list uchar int vertex_index\nproperty int vertex_indices");
+  std::string scalar_face = face;
+  scalar_face.append(4, '\0');
+  EXPECT_EQ(message_of(scalar_indices + body + scalar_face),
+            "bad.ply: face property 'vertex_indices' is not an integer list of vertices");
   for (const std::string& message : {empty, truncated, huge_message}) {
     EXPECT_EQ(message.find('\n'), std::string::npos);
   }

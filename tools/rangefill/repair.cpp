@@ -233,8 +233,8 @@ void add_repair_command(CLI::App& app, Runner& runner) {
       ->check(CLI::IsMember({"plane", "front"}));
   sub->add_option(
          "--fallback", command->fallback,
-         "What takes a hole the filler cannot fill: front, least-area, both (in that order), "
-         "or none")
+         "What takes a hole the filler cannot fill: front, least-area (a patch of its loop "
+         "without new vertices: Liepa's weight, else least area), both (in that order), or none")
       ->capture_default_str();
   sub->add_option("--mesher", command->mesher,
                   "For a point cloud (points, no faces): greedy (PCL's greedy projection, "
