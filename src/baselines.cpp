@@ -64,7 +64,10 @@ bool fill_loop(SurfaceMesh& surface, const BoundaryLoop& loop, const BaselineOpt
 
 std::vector<Triangle> triangulate_hole_liepa(const std::vector<Vec3>& loop,
                                              const std::vector<Vec3>& third_points) {
-  CGAL_precondition(third_points.size() == loop.size());
+  if (third_points.size() != loop.size()) {
+    throw InvalidInput("triangulate_hole_liepa: " + std::to_string(third_points.size()) +
+                       " third points for a loop of " + std::to_string(loop.size()) + " edges");
+  }
   auto points_of = [](const std::vector<Vec3>& positions) {
     std::vector<Kernel::Point_3> points;
     for (const Vec3& p : positions) points.emplace_back(p.x(), p.y(), p.z());

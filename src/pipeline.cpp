@@ -227,7 +227,7 @@ Fill fill_through_front(const SurfaceContext& surface, const BoundaryLoop& hole,
 // Holes does): by Liepa's weight, whose dihedral angles against the faces outside keep the patch
 // from folding into the surface, else by least area avoiding the chords the mesh has; the first
 // that is manifold and free of intersections. `method` receives which.
-Fill fill_by_least_area(const SurfaceContext& surface, const BoundaryLoop& hole,
+Fill fill_by_loop_patch(const SurfaceContext& surface, const BoundaryLoop& hole,
                         std::string& method) {
   const int n = static_cast<int>(hole.vertices.size());
   std::vector<Vec3> loop, third_points;
@@ -332,7 +332,7 @@ Fill fill_hole(const SurfaceContext& surface, const BoundaryLoop& hole, const In
   if ((!fill || (in_part && last_pass)) && options.fallback_least_area) {
     const std::string part_method = report.method;
     try {
-      fill = fill_by_least_area(surface, hole, report.method);
+      fill = fill_by_loop_patch(surface, hole, report.method);
     } catch (const ProcessingError& error) {
       failure += (failure.empty() ? "" : "; ") + std::string(error.what());
       report.method = part_method;

@@ -101,6 +101,8 @@ TEST(TriangulateHoleLiepa, ClosesEachLoopOrientedLikeTheSurface) {
   }
   EXPECT_TRUE(check_manifold(closed).closed_manifold());
   EXPECT_EQ(count_self_intersections(closed, faces_of_hole(closed, kAnyHole)), 0);
+  EXPECT_THROW(triangulate_hole_liepa({Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY()}, {}),
+               InvalidInput);
 }
 
 // Refined and faired, the patch of the one loop asked for gets vertices of its own, near the sphere

@@ -46,6 +46,7 @@ RepairResult fill_holes_cgal(const Mesh& mesh, const BaselineOptions& options);
 /// `third_points` gives (one per edge (k, k + 1)). Searched among the faces of the 3D Delaunay
 /// triangulation of the loop, failing that among all triangles of it. Triangles index `loop`
 /// and use each edge (k, k + 1) reversed, like triangulate_hole_polygon's. Empty when none.
+/// Throws InvalidInput unless there is one third point per edge.
 std::vector<Triangle> triangulate_hole_liepa(const std::vector<Vec3>& loop,
                                              const std::vector<Vec3>& third_points);
 
