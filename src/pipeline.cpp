@@ -236,10 +236,9 @@ Fill fill_by_loop_patch(const SurfaceContext& surface, const BoundaryLoop& hole,
     loop.push_back(surface.mesh.positions[a]);
     const int along = find_halfedge(surface.mesh, surface.topology, a, b);
     if (along < 0) throw ProcessingError("hole " + std::to_string(hole.id) + ": not a border loop");
-    const Triangle& outside = surface.mesh.triangles[halfedge_face(along)];
-    for (int v : outside) {
-      if (v != a && v != b) third_points.push_back(surface.mesh.positions[v]);
-    }
+    // The corner of the face outside opposite the edge: where its previous half-edge starts.
+    const int third = surface.mesh.triangles[halfedge_face(along)][prev_halfedge(along) % 3];
+    third_points.push_back(surface.mesh.positions[third]);
   }
   Fill fill;
   fill.boundary = hole.vertices;

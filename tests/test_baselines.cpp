@@ -89,9 +89,9 @@ TEST(TriangulateHoleLiepa, ClosesEachLoopOrientedLikeTheSurface) {
       const int a = loop.vertices[(start + k) % n], b = loop.vertices[(start + k + 1) % n];
       vertices.push_back(a);
       points.push_back(mesh.positions[a]);
-      for (int v : mesh.triangles[halfedge_face(find_halfedge(mesh, topology, a, b))]) {
-        if (v != a && v != b) third_points.push_back(mesh.positions[v]);
-      }
+      const int along = find_halfedge(mesh, topology, a, b);
+      third_points.push_back(
+          mesh.positions[mesh.triangles[halfedge_face(along)][prev_halfedge(along) % 3]]);
     }
     const std::vector<Triangle> patch = triangulate_hole_liepa(points, third_points);
     EXPECT_EQ(static_cast<int>(patch.size()), n - 2) << "loop " << loop.id;
