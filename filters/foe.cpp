@@ -4,8 +4,11 @@
 
 namespace rangefill {
 
-FoeInpainter::FoeInpainter(FoeModel model, const FoeMapOptions& options)
-    : model_(std::move(model)), options_(options) {}
+FoeInpainter::FoeInpainter(FoeModel model, const FoeMapOptions& options,
+                           std::unique_ptr<Inpainter> start)
+    : model_(std::move(model)), options_(options), start_(std::move(start)) {
+  if (start_) options_.start_from_image = true;
+}
 
 void FoeInpainter::inpaint(cv::InputArray depth_in, cv::InputArray mask_in,
                            cv::OutputArray out) const {
@@ -23,7 +26,13 @@ void FoeInpainter::inpaint(cv::InputArray depth_in, cv::InputArray mask_in,
   crop &= cv::Rect(0, 0, depth.cols, depth.rows);
   const double divisor = foe_input_divisor(model_, depth(crop), mask(crop));
   cv::Mat image;
-  depth(crop).convertTo(image, CV_64F, 1.0 / divisor);
+  if (start_) {
+    cv::Mat started;
+    start_->inpaint(depth(crop), mask(crop), started);
+    started.convertTo(image, CV_64F, 1.0 / divisor);
+  } else {
+    depth(crop).convertTo(image, CV_64F, 1.0 / divisor);
+  }
   const cv::Mat restored = foe_map(model_, image, mask(crop).clone(), options_);
   cv::Mat result = out.getMat();
   for (int row = 0; row < crop.height; ++row) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <queue>
 #include <random>
@@ -14,6 +15,7 @@
 #include "png_check.h"
 #include "rangefill/errors.h"
 #include "rangefill/io.h"
+#include "rangefill/parallel.h"
 #include "rangefill/range_image.h"
 
 namespace rangefill {
@@ -182,7 +184,70 @@ cv::Mat fill_from_source(const cv::Mat& z, const cv::Mat& hole, const cv::Mat& s
   return filled;
 }
 
+struct HoleOutcome {
+  enum Kind { filled, too_large, at_border, without_support } kind = filled;
+  int pixels = 0;
+  bool at_edge = false;
+};
+
+// Fills hole `label` of `labels` (connectedComponentsWithStats' labels and `stats`) into `out`,
+// the output image (of the depth's type), at the hole's pixels only.
+HoleOutcome fill_hole(const cv::Mat& z, const cv::Mat& data, const cv::Mat& labels,
+                      const cv::Mat& stats, int label, const Inpainter& inpainter,
+                      const DepthFillOptions& options, cv::Mat& out) {
+  const cv::Rect box(stats.at<int>(label, cv::CC_STAT_LEFT), stats.at<int>(label, cv::CC_STAT_TOP),
+                     stats.at<int>(label, cv::CC_STAT_WIDTH),
+                     stats.at<int>(label, cv::CC_STAT_HEIGHT));
+  HoleOutcome outcome;
+  outcome.pixels = stats.at<int>(label, cv::CC_STAT_AREA);
+  if (options.max_hole_pixels > 0 && outcome.pixels > options.max_hole_pixels) {
+    outcome.kind = HoleOutcome::too_large;
+    return outcome;
+  }
+  const bool touches_border =
+      box.x == 0 || box.y == 0 || box.x + box.width == z.cols || box.y + box.height == z.rows;
+  if (touches_border && !options.fill_border) {
+    outcome.kind = HoleOutcome::at_border;
+    return outcome;
+  }
+  const int m = options.margin;
+  const cv::Rect window = cv::Rect(box.x - m, box.y - m, box.width + 2 * m, box.height + 2 * m) &
+                          cv::Rect(0, 0, z.cols, z.rows);
+  const cv::Mat hole = labels(window) == label;
+  const cv::Mat source =
+      fill_source(z(window), data(window), hole, options.discontinuity, outcome.at_edge);
+  if (source.empty()) {
+    outcome.kind = HoleOutcome::without_support;
+    return outcome;
+  }
+  const cv::Mat fill = fill_from_source(z(window), hole, source, inpainter, options);
+  // Pixel by pixel: cv::Mat::copyTo with a mask may store whole vectors, neighbours included,
+  // which would race with the holes around this one.
+  for (int row = 0; row < window.height; ++row) {
+    for (int col = 0; col < window.width; ++col) {
+      if (!hole.at<std::uint8_t>(row, col)) continue;
+      const float metres = fill.at<float>(row, col);
+      const cv::Point p(window.x + col, window.y + row);
+      if (out.type() == CV_16UC1) {  // millimetres, rounded; a fill is never 0 (invalid)
+        out.at<std::uint16_t>(p) =
+            std::max<std::uint16_t>(cv::saturate_cast<std::uint16_t>(1000.0 * metres), 1);
+      } else {
+        out.at<float>(p) = metres;
+      }
+    }
+  }
+  return outcome;
+}
+
 }  // namespace
+
+InpainterOptions depth_inpainting_defaults() {
+  InpainterOptions options;
+  options.foe_start = "telea";
+  options.foe_tolerance = 3e-3;
+  options.foe_iterations = 10;
+  return options;
+}
 
 cv::Mat invalid_depth_mask(cv::InputArray depth) {
   check_depth_type(depth.type(), "invalid_depth_mask");
@@ -207,9 +272,10 @@ DepthFillStats fill_depth(cv::InputArray depth_in, cv::InputArray mask_in, cv::O
     }
     to_fill = mask_in.getMat() != 0;
   }
-  if (!(options.discontinuity > 0) || options.margin < 1 || options.max_hole_pixels < 0) {
+  if (!(options.discontinuity > 0) || options.margin < 1 || options.max_hole_pixels < 0 ||
+      options.threads < 1) {
     throw InvalidInput(
-        "fill_depth: discontinuity must be positive, margin at least 1 and "
+        "fill_depth: discontinuity must be positive, margin and threads at least 1 and "
         "max_hole_pixels not negative");
   }
   const std::unique_ptr<Inpainter> inpainter =
@@ -221,48 +287,29 @@ DepthFillStats fill_depth(cv::InputArray depth_in, cv::InputArray mask_in, cv::O
   const int components = cv::connectedComponentsWithStats(to_fill, labels, stats, centroids, 8);
   depth.copyTo(filled);
   cv::Mat out = filled.getMat();
-  const cv::Rect image(0, 0, depth.cols, depth.rows);
+  // Holes are independent: each reads the input only and writes its own pixels, so they can run
+  // at once; outcomes (and a failure, the first in hole order) are taken in hole order.
+  std::vector<HoleOutcome> outcomes(std::max(0, components - 1));
+  std::vector<std::exception_ptr> failures(outcomes.size());
+  parallel_for(static_cast<int>(outcomes.size()), options.threads, [&](int i) {
+    try {
+      outcomes[i] = fill_hole(z, data, labels, stats, i + 1, *inpainter, options, out);
+    } catch (...) {
+      failures[i] = std::current_exception();
+    }
+  });
   DepthFillStats result;
-  result.holes = components - 1;
-  for (int label = 1; label < components; ++label) {
-    const cv::Rect box(
-        stats.at<int>(label, cv::CC_STAT_LEFT), stats.at<int>(label, cv::CC_STAT_TOP),
-        stats.at<int>(label, cv::CC_STAT_WIDTH), stats.at<int>(label, cv::CC_STAT_HEIGHT));
-    const int area = stats.at<int>(label, cv::CC_STAT_AREA);
-    if (options.max_hole_pixels > 0 && area > options.max_hole_pixels) {
-      ++result.too_large;
-      continue;
-    }
-    const bool touches_border = box.x == 0 || box.y == 0 || box.x + box.width == depth.cols ||
-                                box.y + box.height == depth.rows;
-    if (touches_border && !options.fill_border) {
-      ++result.at_border;
-      continue;
-    }
-    const int m = options.margin;
-    const cv::Rect window =
-        cv::Rect(box.x - m, box.y - m, box.width + 2 * m, box.height + 2 * m) & image;
-    const cv::Mat hole = labels(window) == label;
-    bool at_edge = false;
-    const cv::Mat source =
-        fill_source(z(window), data(window), hole, options.discontinuity, at_edge);
-    if (source.empty()) {
-      ++result.without_support;
-      continue;
-    }
-    const cv::Mat fill = fill_from_source(z(window), hole, source, *inpainter, options);
-    ++result.filled;
-    result.filled_pixels += area;
-    result.at_edge += at_edge;
-    cv::Mat target = out(window);
-    if (depth.type() == CV_16UC1) {
-      // Millimetres, rounded; a fill is never 0 (invalid).
-      cv::Mat millimetres;
-      fill.convertTo(millimetres, CV_16U, 1000.0);
-      cv::max(millimetres, 1, millimetres);
-      millimetres.copyTo(target, hole);
-    } else {
-      fill.copyTo(target, hole);
+  result.holes = static_cast<int>(outcomes.size());
+  for (size_t i = 0; i < outcomes.size(); ++i) {
+    if (failures[i]) std::rethrow_exception(failures[i]);
+    const HoleOutcome& outcome = outcomes[i];
+    result.too_large += outcome.kind == HoleOutcome::too_large;
+    result.at_border += outcome.kind == HoleOutcome::at_border;
+    result.without_support += outcome.kind == HoleOutcome::without_support;
+    if (outcome.kind == HoleOutcome::filled) {
+      ++result.filled;
+      result.filled_pixels += outcome.pixels;
+      result.at_edge += outcome.at_edge;
     }
   }
   return result;

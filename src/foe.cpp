@@ -457,7 +457,7 @@ double ridge_of(const FoeModel& model) {
   return ridge;
 }
 
-// foe_map's newton method on x (the unknowns zeroed).
+// foe_map's newton method on x.
 cv::Mat newton_map(const FoeModel& model, cv::Mat x, const cv::Mat& mask,
                    const FoeMapOptions& options) {
   InferenceProblem problem(model, mask);
@@ -484,7 +484,7 @@ cv::Mat newton_map(const FoeModel& model, cv::Mat x, const cv::Mat& mask,
   };
   // The start: the harmonic fill. Its maximum principle keeps it within the known values around
   // each hole, so E is entered without the overshoot of higher-order fills at depth edges.
-  {
+  if (!options.start_from_image) {
     cv::Mat image32, start32;
     x.convertTo(image32, CV_32F);
     HarmonicInpainter().inpaint(image32, mask, start32);
@@ -754,7 +754,7 @@ class ChebyshevInverse {
   int steps_ = 1;
 };
 
-// foe_map's lbfgs method on x (the unknowns zeroed, some pixel known). Ceres' GradientProblem
+// foe_map's lbfgs method on x (some pixel known). Ceres' GradientProblem
 // solver has no preconditioner hook (a change of variables would need a triangular factor of
 // L + tL², a 13-point matrix that alone costs most of the time budget), hence the loop here.
 cv::Mat lbfgs_map(const FoeModel& model, const LaplacianPolynomial& polynomial, cv::Mat x,
@@ -781,8 +781,13 @@ cv::Mat lbfgs_map(const FoeModel& model, const LaplacianPolynomial& polynomial, 
   };
 
   BlockedEnergy energy_of(model, mask, unknowns);
-  Eigen::VectorXd u = laplacian.solve(laplace.rhs), gradient;  // the harmonic start
-  place(u);
+  Eigen::VectorXd u(n), gradient;
+  if (options.start_from_image) {
+    for (int k = 0; k < n; ++k) u[k] = x.at<double>(unknowns.pixels[k]);
+  } else {
+    u = laplacian.solve(laplace.rhs);  // the harmonic start
+    place(u);
+  }
   double energy = energy_of(x, gradient);
   std::vector<Eigen::VectorXd> steps, changes;  // s_k, y_k of the two-loop recursion
   std::vector<double> rhos;
@@ -877,8 +882,12 @@ cv::Mat foe_map(const FoeModel& model, const cv::Mat& image, const cv::Mat& mask
   cv::Mat x = image.clone();
   const int unknowns = cv::countNonZero(mask);
   if (unknowns == 0) return x;
-  x.setTo(0, mask);
-  if (unknowns == static_cast<int>(mask.total())) return x;
+  if (unknowns == static_cast<int>(mask.total())) return x.setTo(0);
+  if (options.start_from_image) {
+    if (!cv::checkRange(x)) throw InvalidInput("foe_map: the start is not finite");
+  } else {
+    x.setTo(0, mask);
+  }
   return options.method == FoeMapMethod::newton ? newton_map(model, x, mask, options)
                                                 : lbfgs_map_by_groups(model, x, mask, options);
 }

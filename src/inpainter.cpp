@@ -33,7 +33,18 @@ const std::vector<Registration>& registry() {
       {"harmonic", [](const InpainterOptions&) { return std::make_unique<HarmonicInpainter>(); }},
       {"foe",
        [](const InpainterOptions& o) {
-         return std::make_unique<FoeInpainter>(load_foe_model(o.model));
+         if (!(o.foe_tolerance >= 0) || o.foe_iterations < 0) {
+           throw InvalidInput("foe: the tolerance and the iterations must not be negative");
+         }
+         if (o.foe_start.rfind("foe", 0) == 0) {
+           throw InvalidInput("foe: cannot start from " + o.foe_start);
+         }
+         FoeMapOptions map;
+         map.function_tolerance = o.foe_tolerance;
+         map.max_iterations = o.foe_iterations;
+         std::unique_ptr<Inpainter> start;
+         if (o.foe_start != "harmonic") start = make_inpainter(o.foe_start, o);
+         return std::make_unique<FoeInpainter>(load_foe_model(o.model), map, std::move(start));
        }},
       {"mls", [](const InpainterOptions& o) { return std::make_unique<MlsHeightInpainter>(o); }},
   };

@@ -203,6 +203,40 @@ TEST(FillDepth, KeepsEveryOtherPixelAndIsDeterministic) {
   EXPECT_EQ(std::memcmp(first.data, in_place.data, first.total() * first.elemSize()), 0);
 }
 
+// Holes filled on several threads give the same image, bit for bit, and the same counts as on one:
+// a ball before a wall, 16-bit, with twelve holes (some at its silhouette) and a grid of 400 bars
+// two pixels apart, whose windows overlap (a write that touched a hole's neighbours would race).
+TEST(FillDepth, SameResultAtAnyThreadCount) {
+  cv::Mat input;
+  depth_image([](const Vec3& r) {
+    const double ball = sphere_depth(r, {0, 0, 2}, 0.5);
+    return ball > 0 ? ball : plane_depth(r, {0, 0, 1}, 3);
+  }).convertTo(input, CV_16U, 1000);
+  cv::Mat hole = cv::Mat::zeros(kSize, CV_8U);
+  for (int k = 0; k < 12; ++k) hole |= disc({60 + 45 * k, 120 + 20 * (k % 5)}, 3 + k % 4);
+  for (int row = 300; row < 380; row += 4) {
+    for (int col = 150; col < 490; col += 17) hole(cv::Rect(col, row, 15, 2)).setTo(255);
+  }
+  input.setTo(0, hole);
+  for (const char* name : {"foe", "ns"}) {
+    DepthFillOptions options;
+    options.inpainter = name;
+    cv::Mat one, several;
+    const DepthFillStats on_one = fill_depth(input, cv::noArray(), one, options);
+    EXPECT_EQ(on_one.filled, 412) << name;
+    EXPECT_GT(on_one.at_edge, 0) << name;
+    EXPECT_EQ(cv::countNonZero(one == 0), 0) << name;
+    for (int threads : {2, 5}) {
+      options.threads = threads;
+      const DepthFillStats on_several = fill_depth(input, cv::noArray(), several, options);
+      EXPECT_EQ(cv::norm(one, several, cv::NORM_INF), 0) << name << " " << threads;
+      EXPECT_EQ(on_several.filled, on_one.filled) << name;
+      EXPECT_EQ(on_several.at_edge, on_one.at_edge) << name;
+      EXPECT_EQ(on_several.filled_pixels, on_one.filled_pixels) << name;
+    }
+  }
+}
+
 // Holes larger than max_hole_pixels and holes on the border are left unless asked; a hole with no
 // valid pixel around it is left and counted.
 TEST(FillDepth, LeavesLargeBorderAndUnsupportedHoles) {
@@ -257,7 +291,8 @@ TEST(FillDepth, RefusesBadArguments) {
   for (const auto& spoil : std::vector<std::function<void(DepthFillOptions&)>>{
            [](DepthFillOptions& o) { o.discontinuity = 0; },
            [](DepthFillOptions& o) { o.margin = 0; },
-           [](DepthFillOptions& o) { o.max_hole_pixels = -1; }}) {
+           [](DepthFillOptions& o) { o.max_hole_pixels = -1; },
+           [](DepthFillOptions& o) { o.threads = 0; }}) {
     DepthFillOptions bad;
     spoil(bad);
     EXPECT_THROW(fill_depth(depth, cv::noArray(), out, bad), InvalidInput);

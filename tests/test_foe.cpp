@@ -2,6 +2,8 @@
 #include "rangefill/foe.h"
 
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -151,6 +153,77 @@ TEST(FoeMap, LbfgsEndsWhereNewtonDoes) {
     EXPECT_LT(cv::norm(lbfgs, newton, cv::NORM_INF, mask), 1e-2) << name;
     std::printf("%s: E lbfgs %.6f newton %.6f, largest difference %.2e\n", name.c_str(), e_lbfgs,
                 e_newton, cv::norm(lbfgs, newton, cv::NORM_INF, mask));
+  }
+}
+
+// With start_from_image, inference starts from the unknowns' values given: none of its steps
+// leaves them unchanged, and further steps only lower E from there. A start that is not finite is
+// refused.
+TEST(FoeMap, StartsFromTheImageWhenAsked) {
+  const FoeModel model = load_foe_model("depth");
+  cv::Mat image(32, 32, CV_64F), mask = cv::Mat::zeros(image.size(), CV_8U);
+  for (int r = 0; r < image.rows; ++r) {
+    for (int c = 0; c < image.cols; ++c) {
+      image.at<double>(r, c) = 0.5 + 0.01 * c + 0.1 * std::sin(0.3 * r) * std::cos(0.2 * c);
+      if ((r - 15) * (r - 15) + (c - 17) * (c - 17) < 64) mask.at<std::uint8_t>(r, c) = 255;
+    }
+  }
+  cv::Mat start = image.clone();
+  cv::Mat noise(image.size(), CV_64F);
+  cv::randu(noise, -0.2, 0.2);
+  cv::add(start, noise, start, mask);
+  FoeMapOptions options;
+  options.start_from_image = true;
+  options.max_iterations = 0;
+  EXPECT_EQ(cv::norm(foe_map(model, start, mask, options), start, cv::NORM_INF), 0);
+  options.max_iterations = 100;
+  const cv::Mat x = foe_map(model, start, mask, options);
+  EXPECT_EQ(cv::norm(x, image, cv::NORM_INF, ~mask), 0);
+  const double from_start = foe_energy_of_unknowns(model, start, mask);
+  EXPECT_LT(foe_energy_of_unknowns(model, x, mask), 0.5 * from_start);
+  start.at<double>(15, 17) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(foe_map(model, start, mask, options), InvalidInput);
+}
+
+// InpainterOptions::foe_start: foe refines another back-end's fill (0 steps return it as it is,
+// here where the crop foe works on is the whole image), lowering E; foe cannot start from itself,
+// and negative limits are refused.
+TEST(FoeInpainter, RefinesAnotherBackendsFill) {
+  const int n = 20;
+  cv::Mat image(n, n, CV_32F), mask = cv::Mat::zeros(n, n, CV_8U);
+  for (int r = 0; r < n; ++r) {
+    for (int c = 0; c < n; ++c) {
+      image.at<float>(r, c) = static_cast<float>(0.5 + 0.02 * c + 0.001 * r * r);
+      if ((r - 10) * (r - 10) + (c - 10) * (c - 10) < 64) mask.at<std::uint8_t>(r, c) = 255;
+    }
+  }
+  image.setTo(0, mask);
+  cv::Mat telea, unrefined, refined;
+  make_inpainter("telea")->inpaint(image, mask, telea);
+  InpainterOptions options;
+  options.foe_start = "telea";
+  options.foe_iterations = 0;
+  make_inpainter("foe", options)->inpaint(image, mask, unrefined);
+  EXPECT_EQ(cv::norm(unrefined, telea, cv::NORM_INF), 0);
+  options.foe_iterations = 10;
+  make_inpainter("foe", options)->inpaint(image, mask, refined);
+  EXPECT_EQ(cv::norm(refined, image, cv::NORM_INF, ~mask), 0);
+  const FoeModel model = load_foe_model(options.model);
+  const auto energy = [&](const cv::Mat& x) {
+    cv::Mat x64;
+    x.convertTo(x64, CV_64F);
+    return foe_energy_of_unknowns(model, x64, mask);
+  };
+  EXPECT_LT(energy(refined), energy(telea));
+  for (const auto& spoil : std::vector<std::function<void(InpainterOptions&)>>{
+           [](InpainterOptions& o) { o.foe_start = "foe"; },
+           [](InpainterOptions& o) { o.foe_start = "foe:roth-black"; },
+           [](InpainterOptions& o) { o.foe_start = "nothing"; },
+           [](InpainterOptions& o) { o.foe_tolerance = -1; },
+           [](InpainterOptions& o) { o.foe_iterations = -1; }}) {
+    InpainterOptions bad;
+    spoil(bad);
+    EXPECT_THROW(make_inpainter("foe", bad), InvalidInput);
   }
 }
 

@@ -71,13 +71,15 @@ struct FoeMapOptions {
   double function_tolerance = 1e-6;   // stop when a step lowers E by less than this share of E
   double gradient_tolerance = 1e-10;  // or when max |∂E/∂x| over the unknowns falls below this
   FoeMapMethod method = FoeMapMethod::lbfgs;
+  bool start_from_image = false;  // start from the unknowns' values in the image, not harmonic
 };
 
 /// The MAP estimate under `model` of the pixels of `image` (CV_64F, already divided by
 /// foe_input_divisor) under `mask` (CV_8U, non-zero = unknown); the other pixels are returned
-/// unchanged and the unknowns' values in `image` are not read. Inference starts from the harmonic
-/// fill (Laplace's equation; within the known values around each hole) and only lowers E from
-/// there. Deterministic; a mask covering the whole image gives zeros (nothing to go by).
+/// unchanged. Inference starts from the harmonic fill (Laplace's equation; within the known values
+/// around each hole), or with options.start_from_image from the unknowns' values in `image`
+/// (otherwise not read), and only lowers E from there: a local minimum near the start, as E is
+/// not convex. Deterministic; a mask covering the whole image gives zeros (nothing to go by).
 ///  - lbfgs: L-BFGS whose initial inverse Hessian is (L + t·L²)⁻¹ scaled, L the 5-point Laplacian
 ///    over the unknowns: t is fitted to the model so that the polynomial follows the spectrum of
 ///    the Gaussian field with the model's filters (spread ~6 against ~44 for L alone on the

@@ -16,6 +16,11 @@ struct InpainterOptions {
   std::string model = "depth";  // foe: a shipped model's name or a model file
   double mls_alpha = 1.0 / 64;  // mls: α of eq. 6 (Wang & Oliveira), per squared pixel (README)
   double mls_ring = 3;          // mls: known pixels within this many pixels of a hole are fitted
+  /// foe: what inference starts from, "harmonic" (its own Laplace fill) or another back-end's name
+  /// (not foe): E is not convex, and the MAP found is the local minimum near the start.
+  std::string foe_start = "harmonic";
+  double foe_tolerance = 1e-6;  // foe: stop when a step lowers E by less than this share of E
+  int foe_iterations = 100;     // foe: or after this many steps
 };
 
 /// A back-end. inpaint(depth, mask, out): `depth` is CV_32FC1; `mask` is CV_8UC1 of the same size,

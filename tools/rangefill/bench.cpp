@@ -425,6 +425,7 @@ void add_bench_command(CLI::App& app, Runner& runner) {
                   "mls: alpha of the weights exp(-alpha d^2)/d^2 (eq. 6), d in pixels")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 100.0));
+  add_foe_inference_options(sub, command->inpainting);
   sub->add_option("--trends", command->trends,
                   "Comma-separated trends (none, plane, quadric, sphere, auto)")
       ->capture_default_str();

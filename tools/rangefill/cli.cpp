@@ -169,6 +169,25 @@ std::string inpainter_help() {
          join(shipped_foe_models()) + " or a model file";
 }
 
+void add_foe_inference_options(CLI::App* sub, InpainterOptions& options) {
+  std::vector<std::string> starts = {"harmonic"};
+  for (const std::string& name : inpainter_names()) {
+    if (name != "foe" && name != "harmonic") starts.push_back(name);
+  }
+  sub->add_option("--foe-start", options.foe_start,
+                  "foe: what inference starts from: harmonic (its own Laplace fill) or another "
+                  "back-end's fill (E is not convex: the minimum found is the one near the start)")
+      ->capture_default_str()
+      ->check(CLI::IsMember(starts));
+  sub->add_option("--foe-tolerance", options.foe_tolerance,
+                  "foe: stop when a step lowers the energy by less than this share of it")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--foe-iterations", options.foe_iterations, "foe: or after this many steps")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100000));
+}
+
 void print_json(const nlohmann::json& value) {
   std::cout << value.dump(2) << "\n";
 }

@@ -51,6 +51,10 @@ void check_inpainter(const std::string& spec, const std::string& option);
 /// The help text of an --inpainter option.
 std::string inpainter_help();
 
+/// --foe-start, --foe-tolerance and --foe-iterations on `sub`, into `options` (whose values are the
+/// defaults shown).
+void add_foe_inference_options(CLI::App* sub, InpainterOptions& options);
+
 /// "a, b, c" for messages and help texts.
 std::string join(const std::vector<std::string>& items);
 

@@ -73,8 +73,9 @@ int run_single(const DepthCommand& command) {
     throw UsageError(command.output + ": is an input; choose another output");
   }
   const auto start = std::chrono::steady_clock::now();
-  const DepthFillStats stats =
-      fill_file(command.input, command.mask, command.output, command.options);
+  DepthFillOptions options = command.options;
+  options.threads = command.threads;
+  const DepthFillStats stats = fill_file(command.input, command.mask, command.output, options);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (command.json) {
@@ -199,7 +200,8 @@ void add_depth_command(CLI::App& app, Runner& runner) {
   sub->add_option("--batch", command->batch, "Fill every depth image of this directory");
   sub->add_option("--out-dir", command->out_dir, "Where --batch writes (same file names)");
   sub->add_option("--threads", command->threads,
-                  "Files filled in parallel with --batch (the outputs do not depend on it)")
+                  "Files filled in parallel with --batch, else holes of the one file (the "
+                  "outputs do not depend on it)")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));
   sub->add_option(
@@ -210,6 +212,7 @@ void add_depth_command(CLI::App& app, Runner& runner) {
   sub->add_option("--inpainter", options.inpainter, "Back-end: " + join(inpainter_names()))
       ->capture_default_str()
       ->check(CLI::IsMember(inpainter_names()));
+  add_foe_inference_options(sub, options.inpainting);
   sub->add_option("--max-hole", options.max_hole_pixels,
                   "Leave holes of more pixels as they are (0: no limit)")
       ->capture_default_str()

@@ -268,6 +268,11 @@ void add_depth_bench_command(CLI::App& app, Runner& runner) {
       ->check(CLI::Range(0.001, 0.5));
   sub->add_option("--seed", command->holes.seed, "Seed of the holes")->capture_default_str();
   sub->add_option("--inpainters", command->inpainters, "Comma-separated back-ends (default: all)");
+  add_foe_inference_options(sub, command->fill.inpainting);
+  sub->add_option("--threads", command->fill.threads,
+                  "Holes of a frame filled at once by fill_depth (cv::inpaint runs as it does)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
   sub->add_option("--discontinuity", command->fill.discontinuity,
                   "Relative depth jump between two surfaces (fill_depth)")
       ->capture_default_str();

@@ -132,6 +132,7 @@ void add_patch_bench_command(CLI::App& app, Runner& runner) {
                   "Comma-separated back-ends; the first is compared with each")
       ->capture_default_str();
   add_patch_options(sub, command->samples);
+  add_foe_inference_options(sub, command->inpainting);
   sub->add_option("--csv", command->csv, "Write one row per patch to this file");
   sub->add_flag("--json", command->json, "Print the summary as JSON");
   sub->callback([command, &runner] { runner = [command] { return run_patch_bench(*command); }; });

@@ -242,6 +242,7 @@ void add_repair_command(CLI::App& app, Runner& runner) {
       ->capture_default_str()
       ->check(CLI::IsMember({"greedy", "none"}));
   sub->add_option("--inpainter", options.inpainter, inpainter_help())->capture_default_str();
+  add_foe_inference_options(sub, options.inpainting);
   sub->add_option("--alpha", options.inpainting.mls_alpha,
                   "mls: alpha of the weights exp(-alpha d^2)/d^2 (eq. 6), d in pixels")
       ->capture_default_str()
