@@ -21,7 +21,7 @@ namespace rangefill {
 
 /// The back-ends' options fill_depth takes by default: InpainterOptions' own, except that foe
 /// refines Telea's fill by at most 10 steps, stopping earlier when one gains less than 3e-3 of E
-/// (README, depth-bench: lower RMSE than the MAP from the harmonic start, 5–7 times faster).
+/// (README, depth-bench: lower RMSE than the MAP from the harmonic start, 3–5 times faster).
 InpainterOptions depth_inpainting_defaults();
 
 struct DepthFillOptions {
