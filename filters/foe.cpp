@@ -28,8 +28,8 @@ void FoeInpainter::inpaint(cv::InputArray depth_in, cv::InputArray mask_in,
   cv::Mat image;
   if (start_) {
     cv::Mat started;
-    start_->inpaint(depth(crop), mask(crop), started);
-    started.convertTo(image, CV_64F, 1.0 / divisor);
+    start_->inpaint(depth, mask, started);  // as that back-end would fill the image
+    started(crop).convertTo(image, CV_64F, 1.0 / divisor);
   } else {
     depth(crop).convertTo(image, CV_64F, 1.0 / divisor);
   }

@@ -8,8 +8,8 @@ namespace rangefill {
 
 /// MAP inpainting (foe_map) on the mask's bounding box grown by the filter
 /// footprint (the only cliques that change), inputs divided by foe_input_divisor. Known pixels are
-/// returned exactly. With a `start` back-end, inference starts from its fill of that box
-/// (options.start_from_image is then implied) instead of the harmonic fill.
+/// returned exactly. With a `start` back-end, inference starts from that back-end's fill of the
+/// image (options.start_from_image is then implied) instead of the harmonic fill.
 class FoeInpainter : public Inpainter {
  public:
   explicit FoeInpainter(FoeModel model, const FoeMapOptions& options = {},

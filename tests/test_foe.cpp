@@ -185,16 +185,16 @@ TEST(FoeMap, StartsFromTheImageWhenAsked) {
   EXPECT_THROW(foe_map(model, start, mask, options), InvalidInput);
 }
 
-// InpainterOptions::foe_start: foe refines another back-end's fill (0 steps return it as it is,
-// here where the crop foe works on is the whole image), lowering E; foe cannot start from itself,
-// and negative limits are refused.
+// InpainterOptions::foe_start: foe refines another back-end's fill of the image (0 steps return it
+// as it is, though foe itself works on a crop around the mask), lowering E; foe cannot start from
+// itself, and negative limits are refused.
 TEST(FoeInpainter, RefinesAnotherBackendsFill) {
-  const int n = 20;
+  const int n = 40;
   cv::Mat image(n, n, CV_32F), mask = cv::Mat::zeros(n, n, CV_8U);
   for (int r = 0; r < n; ++r) {
     for (int c = 0; c < n; ++c) {
       image.at<float>(r, c) = static_cast<float>(0.5 + 0.02 * c + 0.001 * r * r);
-      if ((r - 10) * (r - 10) + (c - 10) * (c - 10) < 64) mask.at<std::uint8_t>(r, c) = 255;
+      if ((r - 22) * (r - 22) + (c - 18) * (c - 18) < 64) mask.at<std::uint8_t>(r, c) = 255;
     }
   }
   image.setTo(0, mask);
