@@ -156,9 +156,8 @@ TEST(FoeMap, LbfgsEndsWhereNewtonDoes) {
   }
 }
 
-// With start_from_image, inference starts from the unknowns' values given: none of its steps
-// leaves them unchanged, and further steps only lower E from there. A start that is not finite is
-// refused.
+// With start_from_image, inference starts from the unknowns' values given: zero steps return them
+// unchanged, and steps lower E from there. A start that is not finite is refused.
 TEST(FoeMap, StartsFromTheImageWhenAsked) {
   const FoeModel model = load_foe_model("depth");
   cv::Mat image(32, 32, CV_64F), mask = cv::Mat::zeros(image.size(), CV_8U);
