@@ -170,10 +170,8 @@ std::string inpainter_help() {
 }
 
 void add_foe_inference_options(CLI::App* sub, InpainterOptions& options) {
-  std::vector<std::string> starts = {"harmonic"};
-  for (const std::string& name : inpainter_names()) {
-    if (name != "foe" && name != "harmonic") starts.push_back(name);
-  }
+  std::vector<std::string> starts = inpainter_names();
+  starts.erase(std::find(starts.begin(), starts.end(), "foe"));
   sub->add_option("--foe-start", options.foe_start,
                   "foe: what inference starts from: harmonic (its own Laplace fill) or another "
                   "back-end's fill (E is not convex: the minimum found is the one near the start)")
