@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <iterator>
+#include <map>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
@@ -186,8 +187,17 @@ RepairResult fill_holes_cgal(const Mesh& mesh, const BaselineOptions& options) {
                                            (3LL * report.new_faces - report.boundary_vertices) / 2,
                                            report.new_faces});
     }
-    result.holes_left += !report.filled;
     result.holes.push_back(std::move(report));
+  }
+  // Each loop of the result is an input loop: one not selected, or one whose fill failed.
+  std::map<std::vector<int>, int> input_loop;
+  for (const BoundaryLoop& loop : loops.loops) input_loop.emplace(sorted_vertices(loop), loop.id);
+  for (const BoundaryLoop& loop : find_holes(result.mesh, build_topology(result.mesh)).loops) {
+    const int id = input_loop.at(sorted_vertices(loop));
+    const bool was_selected = std::binary_search(selected.begin(), selected.end(), id);
+    result.open_loops.push_back({loop.id, id, static_cast<int>(loop.vertices.size()), loop.area,
+                                 loop.area_share,
+                                 was_selected ? OpenReason::failed : OpenReason::not_selected});
   }
   if (result.mesh.has_normals()) {
     const std::vector<Vec3> normals = vertex_normals_from_faces(result.mesh);

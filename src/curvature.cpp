@@ -9,13 +9,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Whether the face is too thin to have angles: area below 1e-12 of its longest edge squared.
-bool degenerate(const Vec3& cross, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const double longest =
-      std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
-  return !(cross.norm() > 1e-12 * longest);
-}
-
 }  // namespace
 
 double VertexCurvature::max_principal(int v) const {
@@ -35,7 +28,7 @@ VertexCurvature vertex_curvature(const Mesh& mesh, const MeshTopology& topology)
     const Triangle& t = mesh.triangles[f];
     const Vec3 p[3] = {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
     const Vec3 cross = (p[1] - p[0]).cross(p[2] - p[0]);
-    if (degenerate(cross, p[0], p[1], p[2])) continue;
+    if (is_degenerate(mesh, f)) continue;  // too thin to have angles
     const double area = 0.5 * cross.norm();
     double angle[3], cot[3];
     for (int i = 0; i < 3; ++i) {
@@ -81,11 +74,7 @@ std::vector<double> dihedral_angles(const Mesh& mesh, const MeshTopology& topolo
     const int f = halfedge_face(topology.edge_halfedges[edge.first]);
     const int g = halfedge_face(topology.edge_halfedges[edge.first + 1]);
     const Vec3 a = triangle_cross(mesh, f), b = triangle_cross(mesh, g);
-    const Triangle &s = mesh.triangles[f], &t = mesh.triangles[g];
-    if (degenerate(a, mesh.positions[s[0]], mesh.positions[s[1]], mesh.positions[s[2]]) ||
-        degenerate(b, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]])) {
-      continue;
-    }
+    if (is_degenerate(mesh, f) || is_degenerate(mesh, g)) continue;
     angles[e] = std::atan2(a.cross(b).norm(), a.dot(b));
   }
   return angles;

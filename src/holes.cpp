@@ -113,17 +113,25 @@ HoleSet find_holes(const Mesh& mesh, const MeshTopology& topology) {
     holes.loops.push_back(std::move(loop));
   }
 
-  // Mark the longest loop of each component (ties: the lower id); on an open scan it is the outer
-  // border.
-  std::vector<int> longest(topology.component_count, -1);
-  for (const BoundaryLoop& loop : holes.loops) {
-    int& best = longest[loop.component];
-    if (best < 0 || loop.perimeter > holes.loops[best].perimeter) best = loop.id;
+  std::vector<double> component_area(topology.component_count, 0.0);
+  for (int f = 0; f < mesh.face_count(); ++f) {
+    component_area[topology.face_component[f]] += 0.5 * triangle_cross(mesh, f).norm();
   }
-  for (int id : longest) {
-    if (id >= 0) holes.loops[id].longest_in_component = true;
+  for (BoundaryLoop& loop : holes.loops) {
+    const double total = component_area[loop.component];
+    loop.area_share = total > 0 ? loop.area / total : 0;
   }
   return holes;
+}
+
+std::vector<int> sorted_vertices(const BoundaryLoop& loop) {
+  std::vector<int> vertices = loop.vertices;
+  std::sort(vertices.begin(), vertices.end());
+  return vertices;
+}
+
+bool is_border(const BoundaryLoop& loop, double border_share) {
+  return border_share > 0 && loop.area_share >= border_share;
 }
 
 }  // namespace rangefill

@@ -1,5 +1,6 @@
 #include "rangefill/mesh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -118,6 +119,17 @@ Vec3 triangle_cross(const Mesh& mesh, int face) {
   const Triangle& t = mesh.triangles[face];
   const Vec3& a = mesh.positions[t[0]];
   return (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a);
+}
+
+bool is_degenerate(const Mesh& mesh, int face) {
+  const Triangle& t = mesh.triangles[face];
+  double longest = 0;
+  for (int k = 0; k < 3; ++k) {
+    longest =
+        std::max(longest, (mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]]).squaredNorm());
+  }
+  // |cross| = longest edge × height.
+  return !(triangle_cross(mesh, face).norm() > 1e-12 * longest);
 }
 
 std::vector<Vec3> vertex_normals_from_faces(const Mesh& mesh) {

@@ -42,12 +42,6 @@ double lap(Clock::time_point& start) {
   return seconds;
 }
 
-std::vector<int> sorted_vertices(const BoundaryLoop& loop) {
-  std::vector<int> vertices = loop.vertices;
-  std::sort(vertices.begin(), vertices.end());
-  return vertices;
-}
-
 bool within_size_limits(const BoundaryLoop& loop, const RepairOptions& options) {
   return (options.max_hole_edges <= 0 ||
           static_cast<int>(loop.vertices.size()) <= options.max_hole_edges) &&
@@ -280,8 +274,6 @@ Fill fill_hole(const SurfaceContext& surface, const BoundaryLoop& hole, const In
                const RepairOptions& options, HoleReport& report) {
   const Clock::time_point start = Clock::now();
   const std::string name = "hole " + std::to_string(hole.id);
-  report.boundary_vertices = static_cast<int>(hole.vertices.size());
-  report.area = hole.area;
 
   Clock::time_point stage = start;
   const Zone zone = grow_zone(surface.mesh, surface.topology, surface.holes, hole, surface.normals,
@@ -403,13 +395,59 @@ std::array<long long, 3> merge_fill(Mesh& mesh, const Fill& fill, int hole_id) {
           static_cast<long long>(fill.triangles.size())};
 }
 
+std::string open_reason_name(OpenReason reason) {
+  switch (reason) {
+    case OpenReason::border:
+      return "border";
+    case OpenReason::not_selected:
+      return "not selected";
+    case OpenReason::over_size_limit:
+      return "over size limit";
+    case OpenReason::failed:
+      return "failed";
+  }
+  return "";
+}
+
+int RepairResult::open_count(OpenReason reason) const {
+  return static_cast<int>(
+      std::count_if(open_loops.begin(), open_loops.end(),
+                    [&](const OpenLoop& loop) { return loop.reason == reason; }));
+}
+
+namespace {
+
+// Why the options leave an input loop open; nullopt when it is to be filled.
+std::optional<OpenReason> reason_left_open(const BoundaryLoop& loop, const RepairOptions& options) {
+  if (!options.holes.empty()) {
+    if (std::count(options.holes.begin(), options.holes.end(), loop.id) == 0) {
+      return OpenReason::not_selected;
+    }
+  } else if (is_border(loop, options.border_share)) {
+    return OpenReason::border;
+  }
+  if (!within_size_limits(loop, options)) return OpenReason::over_size_limit;
+  return std::nullopt;
+}
+
+// The first vertex of `loop` that is in `sorted_vertices`, or -1.
+int first_vertex_among(const BoundaryLoop& loop, const std::vector<int>& sorted_vertices) {
+  for (int v : loop.vertices) {
+    if (std::binary_search(sorted_vertices.begin(), sorted_vertices.end(), v)) return v;
+  }
+  return -1;
+}
+
+}  // namespace
+
 RepairResult repair(const Mesh& input, const RepairOptions& options) {
   RepairResult result;
   result.mesh = input;
   Mesh& mesh = result.mesh;
   const std::unique_ptr<Inpainter> inpainter =
       make_inpainter(options.inpainter, options.inpainting);
-  double mean_edge = 0;  // the input's d_m, used in every pass
+  double mean_edge = 0;         // the input's d_m, used in every pass
+  std::vector<int> unfillable;  // the input's unfillable_vertices
 
   // Serialised callbacks: workers report one at a time.
   std::mutex callback_mutex;
@@ -421,8 +459,9 @@ RepairResult repair(const Mesh& input, const RepairOptions& options) {
     };
   }
 
-  std::set<std::vector<int>> seen;              // loops already attempted or deliberately left open
-  std::set<std::vector<int>> left_open;         // loops the options exclude
+  std::set<std::vector<int>> seen;  // loops already attempted or deliberately left open
+  // Input loops the options leave open, as they were judged (id, size, share in the input).
+  std::map<std::vector<int>, OpenLoop> left_open;
   std::unordered_map<int, int> hole_of_vertex;  // boundary vertex -> id of the hole it bounded
   int next_id = 0;
   for (int pass = 0; pass < options.passes; ++pass) {
@@ -433,6 +472,8 @@ RepairResult repair(const Mesh& input, const RepairOptions& options) {
       result.restoration_matrix.push_back({mesh.vertex_count(),
                                            static_cast<long long>(surface.topology.edges.size()),
                                            mesh.face_count()});
+      result.defects = find_defects(mesh, surface.topology);
+      unfillable = unfillable_vertices(mesh, surface.topology);
       const int loops = static_cast<int>(surface.holes.loops.size());
       for (int id : options.holes) {
         if (id < 0 || id >= loops) {
@@ -445,18 +486,14 @@ RepairResult repair(const Mesh& input, const RepairOptions& options) {
     for (const BoundaryLoop& loop : surface.holes.loops) {
       std::vector<int> key = sorted_vertices(loop);
       if (!seen.insert(key).second) continue;
-      const bool named = std::count(options.holes.begin(), options.holes.end(), loop.id) > 0;
-      const bool skipped_border = pass == 0 && options.holes.empty() &&
-                                  options.skip_longest_loops && loop.longest_in_component;
-      if (skipped_border) result.skipped_borders.push_back(loop.id);
-      const bool wanted = pass > 0 || named || (options.holes.empty() && !skipped_border);
-      const bool fits = within_size_limits(loop, options);
-      if (pass == 0 && wanted && !fits) result.oversized.push_back(loop.id);
-      const bool chosen = wanted && fits;
-      if (chosen) {
-        selected.push_back(&loop);
+      const std::optional<OpenReason> reason =
+          pass == 0 ? reason_left_open(loop, options) : std::nullopt;
+      if (reason) {
+        left_open.emplace(std::move(key),
+                          OpenLoop{loop.id, loop.id, static_cast<int>(loop.vertices.size()),
+                                   loop.area, loop.area_share, *reason});
       } else {
-        left_open.insert(std::move(key));
+        selected.push_back(&loop);
       }
     }
     if (selected.empty()) break;
@@ -478,18 +515,27 @@ RepairResult repair(const Mesh& input, const RepairOptions& options) {
       for (int v : loop.vertices) hole_of_vertex.emplace(v, report.id);
       report.pass = pass;
       report.loop = loop.id;
+      report.boundary_vertices = static_cast<int>(loop.vertices.size());
+      report.area = loop.area;
     }
     std::vector<std::optional<Fill>> fills(selected.size());
     parallel_for(static_cast<int>(selected.size()), options.threads, [&](int i) {
       const BoundaryLoop& loop = *selected[i];
       HoleReport& report = reports[i];
       const Clock::time_point start = Clock::now();
-      try {
-        fills[i] = fill_hole(surface, loop, *inpainter, worker_options, report);
-      } catch (const std::exception& error) {
-        report.failure = error.what();
-        report.seconds = seconds_since(start);
+      const int defect = first_vertex_among(loop, unfillable);
+      if (defect >= 0) {
+        report.failure = "hole " + std::to_string(report.id) +
+                         ": touches a non-manifold edge or vertex (vertex " +
+                         std::to_string(defect) + ")";
+      } else {
+        try {
+          fills[i] = fill_hole(surface, loop, *inpainter, worker_options, report);
+        } catch (const std::exception& error) {
+          report.failure = error.what();
+        }
       }
+      if (!report.filled) report.seconds = seconds_since(start);
       if (options.on_hole) {
         std::lock_guard<std::mutex> lock(callback_mutex);
         options.on_hole(report);
@@ -502,8 +548,23 @@ RepairResult repair(const Mesh& input, const RepairOptions& options) {
     next_id += static_cast<int>(surface.holes.loops.size());
   }
 
+  // Every loop of the result: left open by the options, or to be filled and not.
   for (const BoundaryLoop& loop : find_holes(mesh, build_topology(mesh)).loops) {
-    result.holes_left += left_open.count(sorted_vertices(loop)) == 0;
+    OpenLoop open{
+        loop.id,           -1, static_cast<int>(loop.vertices.size()), loop.area, loop.area_share,
+        OpenReason::failed};
+    const auto known = left_open.find(sorted_vertices(loop));
+    if (known != left_open.end()) {
+      open = known->second;
+      open.id = loop.id;
+    } else {
+      for (int v : loop.vertices) {
+        const auto origin = hole_of_vertex.find(v);
+        open.hole = origin != hole_of_vertex.end() ? origin->second : mesh.vertex_hole[v];
+        if (open.hole != kOriginal) break;
+      }
+    }
+    result.open_loops.push_back(open);
   }
   return result;
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <map>
 
 #include <gtest/gtest.h>
@@ -217,8 +218,9 @@ Mesh make_box(int n) {
 
 BoundaryLoop inner_loop(const Mesh& mesh) {
   BoundaryLoop hole;
+  hole.area_share = std::numeric_limits<double>::infinity();
   for (const BoundaryLoop& loop : find_holes(mesh, build_topology(mesh)).loops) {
-    if (!loop.longest_in_component) hole = loop;
+    if (loop.area_share < hole.area_share) hole = loop;
   }
   return hole;
 }

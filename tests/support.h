@@ -71,7 +71,7 @@ Mesh remove_faces(const Mesh& mesh, Predicate inside) {
   return make_mesh(mesh.positions, kept);
 }
 
-/// The last loop of `mesh` that is not the longest of its component: the hole of a sheet with one.
+/// The loop of `mesh` of least area_share (empty if none): the hole of a sheet with one.
 BoundaryLoop inner_loop(const Mesh& mesh);
 
 /// EXPECTs that the two lists hold the same doubles, bit for bit (which == would not tell of -0).

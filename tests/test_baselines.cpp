@@ -64,7 +64,7 @@ TEST(FillHolesCgal, TriangulationClosesBothHoles) {
     EXPECT_EQ(report.new_faces, static_cast<int>(loops.loops[report.loop].vertices.size()) - 2);
     EXPECT_EQ(static_cast<int>(faces_of_hole(result.mesh, report.id).size()), report.new_faces);
   }
-  EXPECT_EQ(result.holes_left, 0);
+  EXPECT_EQ(result.open_count(OpenReason::failed), 0);
   EXPECT_TRUE(check_manifold(result.mesh).closed_manifold());
   EXPECT_EQ(count_self_intersections(result.mesh, faces_of_hole(result.mesh, kAnyHole)), 0);
   ASSERT_EQ(result.restoration_matrix.size(), 3u);

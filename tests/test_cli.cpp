@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <thread>
 
@@ -20,6 +21,7 @@
 #include "rangefill/holes.h"
 #include "rangefill/io.h"
 #include "rangefill/metrics.h"
+#include "rangefill/pipeline.h"
 #include "support.h"
 
 namespace rangefill {
@@ -90,7 +92,7 @@ TEST(Cli, InfoAndHolesDescribeAMesh) {
   ASSERT_EQ(json["loops"].size(), 2u);
   int outer = 0;
   for (const auto& loop : json["loops"]) {
-    if (loop["longest_in_component"]) {
+    if (loop["border"]) {
       ++outer;
       EXPECT_EQ(loop["edges"], 24);
     } else {
@@ -157,16 +159,29 @@ TEST(Cli, RepairClosesASphereCapAndReportsJson) {
   EXPECT_EQ(report["holes"][0]["new_vertices"].get<int>() + capless.vertex_count(),
             out.vertex_count());
 
-  // Without --in-place the input is not overwritten; with the default policy the only loop of a
-  // component is its border and stays open.
+  // Without --in-place the input is not overwritten. The cap is 7.5 % of the sphere, a hole: the
+  // default fills it as --fill-all does, and as the library's defaults do, bit for bit.
   EXPECT_EQ(
       run("repair " + (dir / "in.ply").string() + " -o " + (dir / "in.ply").string()).exit_code, 2);
   EXPECT_EQ(slurp(dir / "in.ply"), before);
+  const Outcome plain =
+      run("repair " + (dir / "in.ply").string() + " -o " + (dir / "plain.ply").string());
+  EXPECT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_EQ(slurp(dir / "plain.ply"),
+            serialize_mesh(rangefill::repair(capless).mesh, MeshFormat::ply));
+  EXPECT_EQ(read_mesh(dir / "plain.ply").mesh.triangles, out.triangles);
+
+  // A hemisphere's loop would be filled by half its surface: a border, left open and said so.
+  const Mesh hemisphere =
+      testing::remove_faces(testing::make_sphere(12), [](const Vec3& p) { return p.z() > -0.01; });
+  write_mesh(hemisphere, dir / "half.ply");
   const Outcome border =
-      run("repair " + (dir / "in.ply").string() + " -o " + (dir / "same.ply").string());
+      run("repair " + (dir / "half.ply").string() + " -o " + (dir / "same.ply").string());
   EXPECT_EQ(border.exit_code, 0) << border.err;
-  EXPECT_NE(border.err.find("--fill-all"), std::string::npos);
-  EXPECT_EQ(read_mesh(dir / "same.ply").mesh.face_count(), capless.face_count());
+  EXPECT_NE(border.err.find("--fill-all"), std::string::npos) << border.err;
+  EXPECT_NE(border.out.find("1 loops, 0 closed, 1 left open (1 border, "), std::string::npos)
+      << border.out;
+  EXPECT_EQ(read_mesh(dir / "same.ply").mesh.triangles, hemisphere.triangles);
   fs::remove_all(dir);
 }
 
@@ -408,7 +423,7 @@ TEST(Cli, RepairChoosesItsLoopsAndSaysWhichItLeftOpen) {
   write_mesh(sheet, dir / "sheet.ply");
   int border = -1, small = -1, large = -1;
   for (const BoundaryLoop& loop : find_holes(sheet, build_topology(sheet)).loops) {
-    (loop.longest_in_component ? border : loop.vertices.size() < 30 ? small : large) = loop.id;
+    (is_border(loop) ? border : loop.vertices.size() < 30 ? small : large) = loop.id;
   }
   ASSERT_TRUE(border >= 0 && small >= 0 && large >= 0);
   const std::string repair = "repair " + (dir / "sheet.ply").string() + " -o ";
@@ -416,11 +431,17 @@ TEST(Cli, RepairChoosesItsLoopsAndSaysWhichItLeftOpen) {
     return check_manifold(read_mesh(dir / name).mesh).boundary_loops;
   };
   const std::string border_note =
-      "rangefill: note: loop " + std::to_string(border) + " is the longest of its component";
+      "rangefill: note: left open as the border of an open surface (a fill would cover at least "
+      "20 % of its component): loop " +
+      std::to_string(border) + " (";
 
   const Outcome plain = run(repair + (dir / "plain.ply").string());
   EXPECT_EQ(plain.exit_code, 0) << plain.err;
   EXPECT_NE(plain.err.find(border_note), std::string::npos) << plain.err;
+  EXPECT_NE(plain.out.find("3 loops, 2 closed, 1 left open (1 border, 0 over a size limit, 0 "
+                           "failed)"),
+            std::string::npos)
+      << plain.out;
   EXPECT_EQ(loops_of("plain.ply"), 1);
 
   const int small_edges =
@@ -428,17 +449,26 @@ TEST(Cli, RepairChoosesItsLoopsAndSaysWhichItLeftOpen) {
   const Outcome limited = run(repair + (dir / "limited.ply").string() + " --max-hole-size " +
                               std::to_string(small_edges));
   EXPECT_EQ(limited.exit_code, 0) << limited.err;
-  EXPECT_NE(limited.err.find("rangefill: note: loop " + std::to_string(large) +
-                             " is larger than --max-hole-size"),
+  EXPECT_NE(limited.out.find("3 loops, 1 closed, 2 left open (1 border, 1 over a size limit, 0 "
+                             "failed)"),
             std::string::npos)
-      << limited.err;
+      << limited.out;
   EXPECT_EQ(loops_of("limited.ply"), 2);
 
   const Outcome named =
       run(repair + (dir / "named.ply").string() + " --holes " + std::to_string(large) + " --json");
   EXPECT_EQ(named.exit_code, 0) << named.err;
-  EXPECT_EQ(nlohmann::json::parse(named.out)["holes"].size(), 1u);
+  const nlohmann::json named_report = nlohmann::json::parse(named.out);
+  EXPECT_EQ(named_report["holes"].size(), 1u);
   EXPECT_EQ(loops_of("named.ply"), 2);
+  // Each loop of the output, with the loop of the input it is and why it is open.
+  EXPECT_EQ(named_report["loops_left_open"], 2);
+  std::map<int, std::string> reasons;
+  for (const auto& loop : named_report["open_loops"]) {
+    reasons[loop["hole"].get<int>()] = loop["reason"].get<std::string>();
+  }
+  EXPECT_EQ(reasons,
+            (std::map<int, std::string>{{border, "not selected"}, {small, "not selected"}}));
 
   const Outcome missing = run(repair + (dir / "missing.ply").string() + " --holes 7");
   EXPECT_EQ(missing.exit_code, 3);
@@ -449,7 +479,9 @@ TEST(Cli, RepairChoosesItsLoopsAndSaysWhichItLeftOpen) {
   const Outcome all = run(repair + (dir / "all.ply").string() + " --fill-all --report " +
                           (dir / "all.json").string());
   EXPECT_EQ(all.exit_code, 5) << all.err;
-  EXPECT_NE(all.err.find("partial repair, 1 holes left open"), std::string::npos) << all.err;
+  EXPECT_NE(all.err.find("partial repair, loops left open that were to be filled: 1"),
+            std::string::npos)
+      << all.err;
   EXPECT_EQ(loops_of("all.ply"), 1);  // the holes are filled all the same
   const nlohmann::json report = nlohmann::json::parse(slurp(dir / "all.json"));
   int refused = 0;

@@ -414,7 +414,7 @@ TEST(DepthFiles, DamagedPngsAreRefusedWithoutLibpngOutput) {
 
   // The PNG fuzzer's corpus (tests/fuzz/corpus/png, with its findings): each file is read or
   // refused with one line naming it, silently.
-  const fs::path corpus = fs::path(RANGEFILL_TEST_DATA).parent_path() / "fuzz" / "corpus" / "png";
+  const fs::path corpus = fs::path(RANGEFILL_SOURCE_DIR) / "tests" / "fuzz" / "corpus" / "png";
   int read = 0;
   for (const fs::directory_entry& entry : fs::directory_iterator(corpus)) {
     SCOPED_TRACE(entry.path().filename().string());

@@ -22,10 +22,7 @@ TEST(FillByFront, FlatHoleIsCoveredExactly) {
   const Mesh sheet = testing::remove_faces(
       testing::make_grid(20), [](const Vec3& p) { return (p - Vec3(9.6, 10.3, 0)).norm() < 5.5; });
   const MeshTopology topology = build_topology(sheet);
-  BoundaryLoop hole;
-  for (const BoundaryLoop& loop : find_holes(sheet, topology).loops) {
-    if (!loop.longest_in_component) hole = loop;
-  }
+  const BoundaryLoop hole = testing::inner_loop(sheet);
   ASSERT_GT(hole.vertices.size(), 20u);
   std::vector<Vec3> samples;
   for (const Triangle& t : sheet.triangles) {
@@ -62,7 +59,7 @@ void expect_one_hole_closed_by(const Mesh& cut, const RepairResult& result,
   ASSERT_EQ(result.holes.size(), 1u);
   EXPECT_TRUE(result.holes[0].filled) << result.holes[0].failure;
   EXPECT_EQ(result.holes[0].method, method);
-  EXPECT_EQ(result.holes_left, 0);
+  EXPECT_EQ(result.open_count(OpenReason::failed), 0);
   testing::expect_input_preserved(cut, result.mesh);
   EXPECT_TRUE(check_manifold(result.mesh).closed_manifold());
 }
@@ -149,7 +146,7 @@ TEST(FrontFiller, ClosesAHoleWrappedRoundATube) {
     EXPECT_NE(report.method, "plane");
   }
   EXPECT_EQ(result.holes[0].method, "front");
-  EXPECT_EQ(result.holes_left, 0);
+  EXPECT_EQ(result.open_count(OpenReason::failed), 0);
   testing::expect_input_preserved(cut, result.mesh);
   EXPECT_TRUE(check_manifold(result.mesh).closed_manifold());
   const std::vector<int> generated = faces_of_hole(result.mesh, kAnyHole);
@@ -176,7 +173,7 @@ TEST(FrontFiller, LastPassPatchesTheWholeLoopRatherThanAPart) {
   const RepairResult part = repair(cut, one_pass);
   ASSERT_EQ(part.holes.size(), 1u);
   EXPECT_EQ(part.holes[0].method, "plane, in part");
-  EXPECT_EQ(part.holes_left, 1);
+  EXPECT_EQ(part.open_count(OpenReason::failed), 1);
 
   one_pass.fallback_least_area = true;
   const RepairResult whole = repair(cut, one_pass);

@@ -54,7 +54,8 @@ TEST(FindHoles, CubeWithOneTriangleRemovedHasOneLoopOfThree) {
   EXPECT_EQ(loop.vertices.size(), 3u);
   EXPECT_NEAR(loop.perimeter, 2.0 + std::sqrt(2.0), 1e-12);
   EXPECT_NEAR(loop.area, 0.5, 1e-12);
-  EXPECT_TRUE(loop.longest_in_component);
+  EXPECT_NEAR(loop.area_share, 0.5 / 5.5, 1e-12);  // of the cube's 5.5 left
+  EXPECT_FALSE(is_border(loop));
   expect_loop_follows_faces(cube, loop);
   // The filling triangle is the removed one: the loop reversed is {4, 5, 6} up to rotation.
   std::vector<int> sorted = loop.vertices;
@@ -69,7 +70,8 @@ TEST(FindHoles, GridHasOneOuterLoop) {
   EXPECT_EQ(holes.loops[0].vertices.size(), 16u);
   EXPECT_NEAR(holes.loops[0].perimeter, 16.0, 1e-12);
   EXPECT_NEAR(holes.loops[0].area, 16.0, 1e-12);
-  EXPECT_TRUE(holes.loops[0].longest_in_component);
+  EXPECT_NEAR(holes.loops[0].area_share, 1.0, 1e-12);
+  EXPECT_TRUE(is_border(holes.loops[0]));
   expect_loop_follows_faces(grid, holes.loops[0]);
 }
 
@@ -82,14 +84,16 @@ TEST(FindHoles, GridWithTwoInteriorHoles) {
   int outer = 0, interior = 0;
   for (const BoundaryLoop& loop : holes.loops) {
     expect_loop_follows_faces(grid, loop);
-    if (loop.longest_in_component) {
+    if (is_border(loop)) {
       ++outer;
       EXPECT_EQ(loop.vertices.size(), 24u);
+      EXPECT_NEAR(loop.area_share, 36.0 / 34.0, 1e-12);
     } else {
       ++interior;
       EXPECT_EQ(loop.vertices.size(), 4u);
       EXPECT_NEAR(loop.perimeter, 4.0, 1e-12);
       EXPECT_NEAR(loop.area, 1.0, 1e-12);
+      EXPECT_NEAR(loop.area_share, 1.0 / 34.0, 1e-12);
     }
   }
   EXPECT_EQ(outer, 1);
@@ -136,7 +140,7 @@ TEST(FindHoles, HoleTouchingTheBorderAtAVertexStaysItsOwnLoop) {
   for (const BoundaryLoop& loop : holes.loops) {
     sizes.push_back(loop.vertices.size());
     expect_loop_follows_faces(grid, loop);
-    EXPECT_EQ(loop.longest_in_component, loop.vertices.size() == 12u);
+    EXPECT_EQ(is_border(loop), loop.vertices.size() == 12u);  // shares 9/7 and 1/7
   }
   std::sort(sizes.begin(), sizes.end());
   EXPECT_EQ(sizes, (std::vector<size_t>{4, 12}));
@@ -150,6 +154,43 @@ TEST(Topology, MisorientedEdgeIsCounted) {
   const MeshTopology topology = build_topology(flipped);
   EXPECT_EQ(topology.misoriented_edge_count, 1);
   EXPECT_TRUE(topology.nonmanifold_vertices.empty());
+}
+
+// Where loops of one component touch at a vertex, fills can join its fans: the vertex is fillable.
+// Where two components touch, or faces meet at a non-manifold edge, it is not.
+TEST(Topology, UnfillableVerticesAreWhereNoFillMakesAManifold) {
+  // A 3x3 grid without its centre quad and its corner quad (2, 2): the hole and the border touch
+  // at vertex 10, one component.
+  Mesh grid = make_grid(3);
+  remove_quad(grid, 3, 2, 2);
+  remove_quad(grid, 3, 1, 1);
+  const MeshTopology grid_topology = build_topology(grid);
+  EXPECT_EQ(grid_topology.nonmanifold_vertices, (std::vector<int>{10}));
+  EXPECT_TRUE(unfillable_vertices(grid, grid_topology).empty());
+
+  const Mesh bowtie = make_mesh({{0, 0, 0}, {-1, -1, 0}, {-1, 1, 0}, {1, 1, 0}, {1, -1, 0}},
+                                {{0, 2, 1}, {0, 4, 3}});  // two components
+  EXPECT_EQ(unfillable_vertices(bowtie, build_topology(bowtie)), (std::vector<int>{0}));
+
+  const Mesh fan = make_mesh({{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, -1, 0}, {0.5, 0, 1}},
+                             {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}});  // three faces on (0, 1)
+  EXPECT_EQ(unfillable_vertices(fan, build_topology(fan)), (std::vector<int>{0, 1}));
+}
+
+TEST(Topology, DefectsAreCounted) {
+  Mesh cube = make_cube();
+  EXPECT_FALSE(find_defects(cube, build_topology(cube)).any());
+  cube.triangles.push_back(cube.triangles[3]);                // duplicated
+  cube.positions.push_back(cube.positions[0]);                // a vertex on vertex 0
+  cube.triangles.push_back({0, 1, cube.vertex_count() - 1});  // degenerate, on edge (0, 1)
+  cube = make_mesh(cube.positions, cube.triangles);
+  const MeshDefects defects = find_defects(cube, build_topology(cube));
+  EXPECT_EQ(defects.duplicated_faces, 1);
+  EXPECT_EQ(defects.degenerate_faces, 1);
+  EXPECT_EQ(defects.nonmanifold_edges, 4);  // the duplicate's three edges and (0, 1)
+  EXPECT_EQ(describe(defects).substr(0, 22), "4 non-manifold edges, ");
+  EXPECT_NE(describe(defects).find("1 duplicated face, 1 degenerate face"), std::string::npos)
+      << describe(defects);
 }
 
 // Rows of ../shared/data/stats.tsv: file -> (boundary loop lengths, d_m).

@@ -580,7 +580,7 @@ TEST(StlIo, AsciiFileWithoutEndsolidIsReadWithAWarning) {
 // sanitizers.
 
 TEST(FuzzCorpus, EveryFileReadsOrFailsWithOneLineNamingIt) {
-  const fs::path corpus = fs::path(RANGEFILL_TEST_DATA).parent_path() / "fuzz" / "corpus";
+  const fs::path corpus = fs::path(RANGEFILL_SOURCE_DIR) / "tests" / "fuzz" / "corpus";
   int files = 0;
   for (const char* format : {"ply", "obj", "off", "stl"}) {
     for (const fs::directory_entry& entry : fs::directory_iterator(corpus / format)) {

@@ -99,6 +99,10 @@ std::array<Vec3, 2> bounding_box(const Mesh& mesh);
 /// Area-weighted unit normal of a triangle's plane times twice its area (the cross product).
 Vec3 triangle_cross(const Mesh& mesh, int face);
 
+/// True when a triangle has no area to speak of: its height over its longest edge is at most
+/// 1e-12 of that edge (collinear or coincident corners, up to rounding), or is not finite.
+bool is_degenerate(const Mesh& mesh, int face);
+
 /// Area-weighted vertex normals from the faces (unit length; zero for a vertex without faces).
 std::vector<Vec3> vertex_normals_from_faces(const Mesh& mesh);
 

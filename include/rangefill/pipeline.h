@@ -92,27 +92,54 @@ struct RepairOptions {
   ProjectionOptions projection;
   RangeImageOptions image;
   BackProjectionOptions back_projection;
-  std::vector<int> holes;           // ids of the input's loops to fill (each must exist: else
-                                    // InvalidInput); empty = every loop
-  bool skip_longest_loops = false;  // with `holes` empty, leave open the longest loop of each
-                                    // component: the outer border of an open scan
-  int max_hole_edges = 0;           // loops with more boundary edges are left open; 0 = no limit
-  double max_hole_area = 0;         // loops with a larger area are left open; 0 = no limit
+  std::vector<int> holes;  // ids of the input's loops to fill (each must exist: else
+                           // InvalidInput); empty = every loop but the borders
+  /// With `holes` empty, input loops for which is_border(loop, border_share) holds are left open
+  /// as the border of an open surface (holes.h); 0 fills them too.
+  double border_share = kBorderShare;
+  int max_hole_edges = 0;    // loops with more boundary edges are left open; 0 = no limit
+  double max_hole_area = 0;  // loops with a larger area are left open; 0 = no limit
   int passes = 8;   // rounds of detect–fill–merge (Section IX); complex holes take one per part
   int threads = 1;  // holes of a pass are independent; the result does not depend on it
   std::function<void(const HoleReport&)> on_hole;    // after each hole (any thread, serialised)
   std::function<void(const HoleImages&)> on_images;  // after each inpainting (serialised)
 };
 
+/// Why a boundary loop of the repaired mesh is open.
+enum class OpenReason {
+  border,           // an input loop taken for the border of an open surface (border_share)
+  not_selected,     // an input loop that RepairOptions::holes does not list
+  over_size_limit,  // an input loop over max_hole_edges or max_hole_area
+  failed,           // a loop that was to be filled: no strategy could fill it, or what is left of
+                    // a hole filled in part when the passes ran out
+};
+
+/// "border", "not selected", "over size limit", "failed".
+std::string open_reason_name(OpenReason reason);
+
+/// A boundary loop of the repaired mesh.
+struct OpenLoop {
+  int id = 0;    // in find_holes of the repaired mesh
+  int hole = 0;  // the input loop's id when the loop is one, else the HoleReport::id of the hole
+                 // whose fill left it
+  int edges = 0;
+  double area = 0;
+  double area_share = 0;  // BoundaryLoop::area_share; for a loop the options left open, in the
+                          // input (what they judged), else in the result
+  OpenReason reason = OpenReason::failed;
+};
+
 struct RepairResult {
   Mesh mesh;
+  MeshDefects defects;  // of the input
   std::vector<HoleReport> holes;
   /// Eq. 17: row 0 counts the input's vertices, edges and faces; row i + 1 those added by the i-th
   /// filled hole, in the order the fills were merged.
   std::vector<std::array<long long, 3>> restoration_matrix;
-  int holes_left = 0;                // boundary loops of the result that were asked to be filled
-  std::vector<int> skipped_borders;  // input loops left open by skip_longest_loops
-  std::vector<int> oversized;  // input loops to fill left open by max_hole_edges / max_hole_area
+  std::vector<OpenLoop> open_loops;  // every boundary loop of `mesh`, by id
+
+  /// Open loops for `reason`.
+  int open_count(OpenReason reason) const;
 };
 
 /// What every hole of a pass reads: the mesh and what is derived from it once per pass.
@@ -132,8 +159,9 @@ struct SurfaceContext {
 /// a zone and planes of its own, the rest left to the next pass; then, if allowed, a patch of the
 /// loop without new vertices (Liepa's weight, triangulate_hole_liepa, else least area). Reads
 /// `surface` only; safe to call concurrently. `report` receives the figures of the stages it
-/// reached. Throws ProcessingError with the reasons when no filler succeeds (a fill is refused when
-/// it would not be manifold or would intersect the surface or itself).
+/// reached (its id, pass, loop, boundary_vertices and area are the caller's to set). Throws
+/// ProcessingError with the reasons when no filler succeeds (a fill is refused when it would not be
+/// manifold or would intersect the surface or itself).
 Fill fill_hole(const SurfaceContext& surface, const BoundaryLoop& hole, const Inpainter& inpainter,
                const RepairOptions& options, HoleReport& report);
 
@@ -152,7 +180,9 @@ std::array<long long, 3> merge_fill(Mesh& mesh, const Fill& fill, int hole_id);
 /// (in parallel when options.threads > 1) and merged in hole order, so the result is the same at
 /// any thread count; then holes are detected again and the next pass fills those that are new.
 /// Original vertices and faces keep their indices and values. A hole that fails is reported and
-/// left open. d_m is the input's mean edge length throughout.
+/// left open; so is, without a try, a loop through one of the input's unfillable_vertices
+/// (topology.h), so that no generated face touches a non-manifold element. d_m is the input's mean
+/// edge length throughout. `open_loops` says why each loop of the result is open.
 RepairResult repair(const Mesh& mesh, const RepairOptions& options = {});
 
 }  // namespace rangefill

@@ -2,6 +2,7 @@
 // Built in O(V + E) by a two-pass counting sort of the edges; no hashing, no per-vertex containers.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "rangefill/mesh.h"
@@ -55,6 +56,28 @@ struct MeshTopology {
 
 /// Builds the adjacency. Precondition: validate_mesh(mesh) passes.
 MeshTopology build_topology(const Mesh& mesh);
+
+/// What keeps a mesh from being a clean 2-manifold, its boundary aside.
+struct MeshDefects {
+  int nonmanifold_edges = 0;     // edges with more than two faces
+  int misoriented_edges = 0;     // edges whose two faces disagree in orientation
+  int nonmanifold_vertices = 0;  // vertices whose faces form more than one fan
+  int duplicated_faces = 0;      // faces on the same three vertices as an earlier one
+  int degenerate_faces = 0;      // is_degenerate (mesh.h)
+  bool any() const;
+};
+
+/// Counts the defects of `mesh`.
+MeshDefects find_defects(const Mesh& mesh, const MeshTopology& topology);
+
+/// The non-zero counts in words, comma-separated ("2 non-manifold edges, 1 duplicated face").
+std::string describe(const MeshDefects& defects);
+
+/// Vertices, ascending, where no fill can make the surface a manifold, so that a fill must not use
+/// them: those on an edge of kNonManifold half-edges (more than two faces, or misoriented, as the
+/// edges of a duplicated face are), and non-manifold vertices other than where open fans of one
+/// component meet (loops touching at a vertex, whose fills join the fans into one).
+std::vector<int> unfillable_vertices(const Mesh& mesh, const MeshTopology& topology);
 
 /// The half-edge from vertex `from` to vertex `to` (the first in face order), or -1 if no face
 /// has it. O(valence).

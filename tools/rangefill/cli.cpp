@@ -50,6 +50,12 @@ void set_fallbacks(const std::string& list, RepairOptions& options) {
   }
 }
 
+std::string fallback_names(const RepairOptions& options) {
+  if (options.fallback_front && options.fallback_least_area) return "front,least-area";
+  if (options.fallback_front) return "front";
+  return options.fallback_least_area ? "least-area" : "none";
+}
+
 std::vector<std::string> split_list(const std::string& text) {
   std::vector<std::string> items;
   std::stringstream stream(text);

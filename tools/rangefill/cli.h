@@ -81,6 +81,9 @@ void add_patch_options(CLI::App* command, HoleSampleOptions& samples);
 /// UsageError otherwise.
 void set_fallbacks(const std::string& list, RepairOptions& options);
 
+/// The list set_fallbacks reads for `options`' fallbacks.
+std::string fallback_names(const RepairOptions& options);
+
 /// SIGINT, SIGTERM and SIGHUP no longer kill the process where it stands: a thread of their own
 /// takes them and exits with 128 + the signal's number, but never while an OutputGuard is held, so
 /// that every output is complete or absent and no temporary file is left behind. Call first in

@@ -1,4 +1,5 @@
-// rangefill holes MESH: every boundary loop with its size, perimeter and area.
+// rangefill holes MESH: every boundary loop with its size, perimeter, area and share of its
+// component's area (what decides whether repair takes it for a border).
 #include <cstdio>
 #include <iostream>
 
@@ -29,7 +30,8 @@ int run_holes(const HolesOptions& options) {
                               {"perimeter", loop.perimeter},
                               {"area", loop.area},
                               {"component", loop.component},
-                              {"longest_in_component", loop.longest_in_component}};
+                              {"area_share", loop.area_share},
+                              {"border", is_border(loop)}};
       if (options.list_vertices) entry["vertices"] = loop.vertices;
       loops.push_back(entry);
     }
@@ -45,13 +47,13 @@ int run_holes(const HolesOptions& options) {
   }
   std::printf("%s: %zu boundary loops\n", options.mesh.c_str(), holes.loops.size());
   if (!holes.loops.empty()) {
-    std::printf("%5s %7s %13s %13s %9s  %s\n", "hole", "edges", "perimeter", "area", "component",
-                "note");
+    std::printf("%5s %7s %13s %13s %9s %6s  %s\n", "hole", "edges", "perimeter", "area",
+                "component", "share", "note");
   }
   for (const BoundaryLoop& loop : holes.loops) {
-    std::printf("%5d %7zu %13.6g %13.6g %9d  %s\n", loop.id, loop.vertices.size(), loop.perimeter,
-                loop.area, loop.component,
-                loop.longest_in_component ? "longest of its component" : "");
+    std::printf("%5d %7zu %13.6g %13.6g %9d %5.1f%%  %s\n", loop.id, loop.vertices.size(),
+                loop.perimeter, loop.area, loop.component, 100 * loop.area_share,
+                is_border(loop) ? "border of an open surface (repair leaves it open)" : "");
     if (options.list_vertices) {
       std::printf("      vertices:");
       for (int v : loop.vertices) std::printf(" %d", v);

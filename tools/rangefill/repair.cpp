@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <set>
 #include <sstream>
 
 #include <opencv2/imgcodecs.hpp>
@@ -18,11 +19,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Defaults are RepairOptions' own: the library and the command repair alike.
 struct RepairCommand {
-  std::string input, output, report, debug_dir, holes = "all", trend = "auto", filler = "plane";
-  std::string fallback = "front,least-area", mesher = "greedy";
-  bool in_place = false, json = false, ascii = false, fill_all = false;
   RepairOptions options;
+  std::string input, output, report, debug_dir, holes = "all";
+  std::string trend = trend_name(options.trend);
+  std::string filler = options.filler == Filler::front ? "front" : "plane";
+  std::string fallback = fallback_names(options);
+  std::string mesher = "greedy";
+  bool in_place = false, json = false, ascii = false, fill_all = false;
 };
 
 std::vector<int> parse_hole_ids(const std::string& text) {
@@ -67,6 +72,14 @@ void refuse_same_file(const std::string& path, const std::string& other, const s
   }
 }
 
+// Why the last attempt on hole `id` failed ("" when none did).
+std::string failure_of(const RepairResult& result, int id) {
+  for (auto hole = result.holes.rbegin(); hole != result.holes.rend(); ++hole) {
+    if (hole->id == id && !hole->filled) return hole->failure;
+  }
+  return "";
+}
+
 nlohmann::json report_json(const RepairCommand& command, const RepairResult& result,
                            double seconds) {
   nlohmann::json holes = nlohmann::json::array();
@@ -99,17 +112,35 @@ nlohmann::json report_json(const RepairCommand& command, const RepairResult& res
                      {"rim_support", hole.rim_support},
                      {"failure", hole.failure}});
   }
+  nlohmann::json open_loops = nlohmann::json::array();
+  for (const OpenLoop& loop : result.open_loops) {
+    nlohmann::json entry = {{"id", loop.id},
+                            {"hole", loop.hole},
+                            {"edges", loop.edges},
+                            {"area", loop.area},
+                            {"area_share", loop.area_share},
+                            {"reason", open_reason_name(loop.reason)}};
+    if (loop.reason == OpenReason::failed) entry["failure"] = failure_of(result, loop.hole);
+    open_loops.push_back(entry);
+  }
+  const MeshDefects& defects = result.defects;
   return {{"input", command.input},
           {"output", command.output},
           {"inpainter", command.options.inpainter},
           {"trend", command.trend},
           {"filler", command.filler},
           {"mesher", command.mesher},
+          {"border_share", command.options.border_share},
+          {"defects",
+           {{"nonmanifold_edges", defects.nonmanifold_edges},
+            {"misoriented_edges", defects.misoriented_edges},
+            {"nonmanifold_vertices", defects.nonmanifold_vertices},
+            {"duplicated_faces", defects.duplicated_faces},
+            {"degenerate_faces", defects.degenerate_faces}}},
           {"holes", holes},
           {"restoration_matrix", result.restoration_matrix},
-          {"holes_left", result.holes_left},
-          {"skipped_borders", result.skipped_borders},
-          {"oversized", result.oversized},
+          {"loops_left_open", result.open_loops.size()},
+          {"open_loops", open_loops},
           {"seconds", seconds}};
 }
 
@@ -126,6 +157,46 @@ void print_summary(const RepairResult& result) {
   }
 }
 
+// "6 loops, 5 closed, 1 left open (1 border, 0 over a size limit, 0 failed)": the loops of the
+// input (each tried in pass 0 or left open by the options), and those of the output by reason.
+std::string loops_line(const RepairResult& result, bool listed) {
+  int input_loops = 0;
+  for (const HoleReport& hole : result.holes) input_loops += hole.pass == 0;
+  std::set<int> open_input_loops;
+  for (const OpenLoop& loop : result.open_loops) {
+    input_loops += loop.reason != OpenReason::failed;
+    open_input_loops.insert(loop.hole);
+  }
+  const int closed = static_cast<int>(
+      std::count_if(result.holes.begin(), result.holes.end(), [&](const HoleReport& hole) {
+        return hole.pass == 0 && open_input_loops.count(hole.id) == 0;
+      }));
+  std::string line = std::to_string(input_loops) + " loops, " + std::to_string(closed) +
+                     " closed, " + std::to_string(result.open_loops.size()) + " left open (" +
+                     std::to_string(result.open_count(OpenReason::border)) + " border, ";
+  if (listed) {
+    line += std::to_string(result.open_count(OpenReason::not_selected)) + " not selected, ";
+  }
+  return line + std::to_string(result.open_count(OpenReason::over_size_limit)) +
+         " over a size limit, " + std::to_string(result.open_count(OpenReason::failed)) +
+         " failed)";
+}
+
+// One note for the loops kept as borders, naming them.
+void print_border_note(const RepairResult& result, double border_share) {
+  std::string ids;
+  for (const OpenLoop& loop : result.open_loops) {
+    if (loop.reason != OpenReason::border) continue;
+    ids += (ids.empty() ? "" : ", ") + std::to_string(loop.hole) + " (" +
+           std::to_string(static_cast<int>(std::lround(100 * loop.area_share))) + " %)";
+  }
+  if (ids.empty()) return;
+  std::cerr << "rangefill: note: left open as the border of an open surface (a fill would cover "
+               "at least "
+            << std::lround(100 * border_share) << " % of its component): loop " << ids
+            << "; --fill-all fills them\n";
+}
+
 int run_repair(RepairCommand& command) {
   if (!command.in_place && fs::exists(command.output) &&
       fs::equivalent(command.input, command.output)) {
@@ -140,7 +211,7 @@ int run_repair(RepairCommand& command) {
   check_inpainter(command.options.inpainter, "--inpainter");
   command.options.holes = parse_hole_ids(command.holes);
   command.options.trend = trend_from_name(command.trend);
-  command.options.skip_longest_loops = !command.fill_all;
+  if (command.fill_all) command.options.border_share = 0;
   command.options.filler = command.filler == "front" ? Filler::front : Filler::plane;
   set_fallbacks(command.fallback, command.options);
   const Mesher mesher = mesher_from_name(command.mesher);
@@ -186,33 +257,28 @@ int run_repair(RepairCommand& command) {
     write_mesh(result.mesh, command.output, write_options);
   }
 
-  for (int id : result.skipped_borders) {
-    std::cerr << "rangefill: note: loop " << id
-              << " is the longest of its component and was left open as the border of an open "
-                 "scan; --fill-all fills it\n";
+  if (result.defects.any()) {
+    std::cerr << "rangefill: warning: " << command.input << ": " << describe(result.defects)
+              << "; holes that touch them are left open\n";
   }
-  for (int id : result.oversized) {
-    std::cerr << "rangefill: note: loop " << id
-              << " is larger than --max-hole-size or --max-hole-area and was left open\n";
-  }
+  print_border_note(result, command.options.border_share);
   const nlohmann::json report = report_json(command, result, seconds);
   if (!command.report.empty()) {
     const OutputGuard guard;
     write_file_atomically(report.dump(2) + "\n", command.report);
   }
-  int failed = 0;
-  for (const HoleReport& hole : result.holes) failed += !hole.filled;
+  const int failed = result.open_count(OpenReason::failed);
   if (command.json) {
     print_json(report);
   } else {
     print_summary(result);
-    std::printf("%zu holes, %d filled, %d left open; %.3f s; wrote %s\n", result.holes.size(),
-                static_cast<int>(result.holes.size()) - failed, result.holes_left, seconds,
+    std::printf("%s; %.3f s; wrote %s\n",
+                loops_line(result, !command.options.holes.empty()).c_str(), seconds,
                 command.output.c_str());
   }
-  if (failed > 0 || result.holes_left > 0) {
-    std::cerr << "rangefill: " << command.output << ": partial repair, " << result.holes_left
-              << " holes left open\n";
+  if (failed > 0) {
+    std::cerr << "rangefill: " << command.output
+              << ": partial repair, loops left open that were to be filled: " << failed << "\n";
     return kPartial;
   }
   return kOk;
@@ -284,9 +350,16 @@ void add_repair_command(CLI::App& app, Runner& runner) {
   sub->add_option("--rings", options.zone.rings, "Rings of the zone of interest (0: eq. 2)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1000));
-  sub->add_flag("--fill-all", command->fill_all,
-                "Also fill the longest loop of each component, left open by default as the border "
-                "of an open scan (with --holes all)");
+  CLI::Option* fill_all =
+      sub->add_flag("--fill-all", command->fill_all,
+                    "Also fill the loops taken for borders of an open surface (with --holes all)");
+  sub->add_option("--border-share", options.border_share,
+                  "A loop whose fill would cover at least this share of its component's surface "
+                  "(its area_share, see `rangefill holes`) is the border of an open surface and "
+                  "is left open, unless listed by --holes (0: none is)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 100.0))
+      ->excludes(fill_all);
   sub->add_flag("--ascii", command->ascii, "Write ASCII instead of binary (PLY, STL)");
   sub->add_flag("--in-place", command->in_place, "Allow OUT to be the input file");
   sub->add_flag("--json", command->json, "Print the report as JSON instead of a table");
