@@ -206,7 +206,7 @@ HoleOutcome fill_hole(const cv::Mat& z, const cv::Mat& data, const cv::Mat& labe
   }
   const bool touches_border =
       box.x == 0 || box.y == 0 || box.x + box.width == z.cols || box.y + box.height == z.rows;
-  if (touches_border && !options.fill_border) {
+  if (touches_border && options.keep_border) {
     outcome.kind = HoleOutcome::at_border;
     return outcome;
   }
@@ -300,18 +300,37 @@ DepthFillStats fill_depth(cv::InputArray depth_in, cv::InputArray mask_in, cv::O
   });
   DepthFillStats result;
   result.holes = static_cast<int>(outcomes.size());
+  std::vector<std::uint8_t> filled_label(components, 0);
   for (size_t i = 0; i < outcomes.size(); ++i) {
     if (failures[i]) std::rethrow_exception(failures[i]);
     const HoleOutcome& outcome = outcomes[i];
-    result.too_large += outcome.kind == HoleOutcome::too_large;
-    result.at_border += outcome.kind == HoleOutcome::at_border;
-    result.without_support += outcome.kind == HoleOutcome::without_support;
-    if (outcome.kind == HoleOutcome::filled) {
-      ++result.filled;
-      result.filled_pixels += outcome.pixels;
-      result.at_edge += outcome.at_edge;
+    DepthFillStats::Left* left = nullptr;
+    switch (outcome.kind) {
+      case HoleOutcome::filled:
+        ++result.filled;
+        result.filled_pixels += outcome.pixels;
+        result.at_edge += outcome.at_edge;
+        filled_label[i + 1] = 255;
+        break;
+      case HoleOutcome::too_large:
+        left = &result.too_large;
+        break;
+      case HoleOutcome::at_border:
+        left = &result.at_border;
+        break;
+      case HoleOutcome::without_support:
+        left = &result.without_support;
+        break;
+    }
+    if (left) {
+      ++left->holes;
+      left->pixels += outcome.pixels;
     }
   }
+  result.filled_mask = cv::Mat::zeros(depth.size(), CV_8U);
+  result.filled_mask.forEach<std::uint8_t>([&](std::uint8_t& value, const int* position) {
+    value = filled_label[labels.at<int>(position[0], position[1])];
+  });
   return result;
 }
 
@@ -330,14 +349,15 @@ std::string lower_extension(const fs::path& path) {
 // The image in a file, as stored (cv::IMREAD_UNCHANGED), with one channel.
 cv::Mat decode_single_channel(const fs::path& path) {
   const std::string bytes = read_file(path);
+  if (bytes.empty()) throw InvalidInput(path.string() + ": file is empty");
   if (detail::is_png(bytes)) detail::check_png(bytes, path.string());
   cv::Mat image;
   try {
     image = cv::imdecode(
         cv::Mat(1, static_cast<int>(bytes.size()), CV_8U, const_cast<char*>(bytes.data())),
         cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception& error) {
-    throw InvalidInput(path.string() + ": " + error.err);
+  } catch (const cv::Exception&) {  // its text is OpenCV's assertion, not a word for the user
+    image.release();
   }
   if (image.empty()) {
     throw InvalidInput(path.string() + ": not a PNG, TIFF or EXR image" +
@@ -391,17 +411,39 @@ void check_depth_format(const fs::path& path, int type) {
   }
 }
 
-void write_depth_image(const cv::Mat& depth, const fs::path& path) {
-  check_depth_format(path, depth.type());
+namespace {
+
+// Encodes `image` in the format of `path`'s extension and writes it atomically.
+void encode_and_write(const cv::Mat& image, const fs::path& path) {
   std::vector<std::uint8_t> bytes;
   bool encoded = false;
   try {
-    encoded = cv::imencode(lower_extension(path), depth, bytes);
-  } catch (const cv::Exception& error) {
-    throw InvalidInput(path.string() + ": " + error.err);
+    encoded = cv::imencode(lower_extension(path), image, bytes);
+  } catch (const cv::Exception&) {
   }
-  if (!encoded) throw IoError(path.string() + ": OpenCV could not encode the image");
+  if (!encoded) {
+    throw IoError(path.string() + ": OpenCV could not encode a " + cv::typeToString(image.type()) +
+                  " image as " + lower_extension(path));
+  }
   write_file_atomically(std::string(bytes.begin(), bytes.end()), path);
+}
+
+}  // namespace
+
+void write_depth_image(const cv::Mat& depth, const fs::path& path) {
+  check_depth_format(path, depth.type());
+  encode_and_write(depth, path);
+}
+
+void write_mask_image(const cv::Mat& mask, const fs::path& path) {
+  const std::string extension = lower_extension(path);
+  if (mask.type() != CV_8UC1) {
+    throw InvalidInput(path.string() + ": a mask is CV_8UC1, not " + cv::typeToString(mask.type()));
+  }
+  if (extension != ".png" && extension != ".tif" && extension != ".tiff") {
+    throw InvalidInput(path.string() + ": a mask is written as .png, .tif or .tiff");
+  }
+  encode_and_write(mask, path);
 }
 
 // ---------------------------------------------------------------------------------------------

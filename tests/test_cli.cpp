@@ -269,6 +269,45 @@ TEST(Cli, DepthFillsOneImage) {
   fs::remove_all(dir);
 }
 
+// Holes on the image border are filled by default; --keep-border leaves them and the summary and
+// --json count them; --filled-mask writes exactly the pixels filled.
+TEST(Cli, DepthSaysWhatIsLeftAndWritesTheFilledMask) {
+  const fs::path dir = testing::temporary_directory("cli-depth-left");
+  cv::Mat depth = depth_with_hole(10, 20);
+  depth(cv::Rect(0, 30, 4, 5)).setTo(0);  // 20 pixels on the border
+  write_depth_image(depth, dir / "in.png");
+  const std::string fill =
+      "depth " + (dir / "in.png").string() + " -o " + (dir / "out.png").string();
+  const Outcome all = run(fill + " --json --filled-mask " + (dir / "filled.png").string());
+  ASSERT_EQ(all.exit_code, 0) << all.err;
+  const nlohmann::json stats = nlohmann::json::parse(all.out);
+  EXPECT_EQ(stats["filled_pixels"], 101);
+  EXPECT_EQ(stats["left_pixels"], 0);
+  EXPECT_EQ(cv::countNonZero(read_depth_image(dir / "out.png") != 1500), 0);
+  const cv::Mat filled = cv::imread((dir / "filled.png").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(filled.type(), CV_8UC1);
+  EXPECT_EQ(cv::norm(filled, depth == 0, cv::NORM_INF), 0);
+
+  const Outcome kept = run(fill + " --keep-border");
+  ASSERT_EQ(kept.exit_code, 0) << kept.err;
+  EXPECT_NE(kept.out.find("2 holes, 1 filled (81 pixels, 0 beside a depth edge); left: 1 holes, "
+                          "20 pixels (at the border 1 / 20)"),
+            std::string::npos)
+      << kept.out;
+  const Outcome kept_json = run(fill + " --keep-border --json");
+  EXPECT_EQ(nlohmann::json::parse(kept_json.out)["left"]["at_border"],
+            (nlohmann::json{{"holes", 1}, {"pixels", 20}}));
+
+  EXPECT_EQ(run(fill + " --filled-mask " + (dir / "in.png").string()).exit_code, 2);
+  EXPECT_EQ(run(fill + " --filled-mask " + (dir / "out.png").string()).exit_code, 2);
+  write_bytes(dir / "empty.png", "");
+  const Outcome empty =
+      run("depth " + (dir / "empty.png").string() + " -o " + (dir / "e.png").string());
+  EXPECT_EQ(empty.exit_code, 3);
+  EXPECT_EQ(empty.err, "rangefill: " + (dir / "empty.png").string() + ": file is empty\n");
+  fs::remove_all(dir);
+}
+
 // A PNG whose header declares 30000×30000 16-bit pixels over 2×2 pixels of data. Before the PNG
 // check, OpenCV reserved the declared 1.8 GB before finding the data missing, and libpng printed
 // its own line to stderr; now it is refused with exit 3 and one line naming it, also with the
@@ -334,6 +373,25 @@ TEST(Cli, DepthBatchFillsADirectory) {
   int written = 0;
   for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir / "shards")) ++written;
   EXPECT_EQ(written, 5);
+
+  // --mask-dir: each frame's mask by its name; a frame without one is skipped and said.
+  fs::create_directories(dir / "masks");
+  for (int i = 0; i < 4; ++i) {
+    cv::Mat mask = cv::Mat::zeros(48, 64, CV_8U);
+    mask(cv::Rect(10 + 7 * i, 5 + 5 * i, 3, 3)).setTo(255);  // 9 pixels of the frame's hole
+    cv::imwrite((dir / "masks" / ("frame-" + std::to_string(i) + ".png")).string(), mask);
+  }
+  const Outcome masked = run(batch + (dir / "masked").string() + " --mask-dir " +
+                             (dir / "masks").string() + " --json");
+  EXPECT_EQ(masked.exit_code, 5);
+  int with_mask = 0;
+  for (const auto& frame : nlohmann::json::parse(masked.out)) {
+    if (!frame["written"].get<bool>()) continue;
+    ++with_mask;
+    EXPECT_EQ(frame["filled_pixels"], 9) << frame;
+  }
+  EXPECT_EQ(with_mask, 4);
+  EXPECT_NE(masked.err.find("frame-4.png: no mask"), std::string::npos) << masked.err;
 
   EXPECT_EQ(run(batch + (dir / "in").string()).exit_code, 2);
   EXPECT_EQ(run(batch + (dir / "x").string() + " --shard 2/2").exit_code, 2);

@@ -185,12 +185,14 @@ TEST(FillDepth, AnExplicitMaskFillsOnlyItsPixels) {
 // gives the same bits; filling in place gives the same result.
 TEST(FillDepth, KeepsEveryOtherPixelAndIsDeterministic) {
   cv::Mat input = depth_image([](const Vec3& r) { return sphere_depth(r, {0, 0, 2}, 1.2); });
-  input.at<float>(0, 0) = std::numeric_limits<float>::quiet_NaN();  // on the border: left
+  input.at<float>(0, 0) = std::numeric_limits<float>::quiet_NaN();  // on the border: kept
   const cv::Mat hole = disc({320, 240}, 12) | disc({200, 150}, 6);
   input.setTo(std::numeric_limits<float>::quiet_NaN(), hole);
+  DepthFillOptions options;
+  options.keep_border = true;
   cv::Mat first, second;
-  fill_depth(input, cv::noArray(), first);
-  fill_depth(input, cv::noArray(), second);
+  fill_depth(input, cv::noArray(), first, options);
+  fill_depth(input, cv::noArray(), second, options);
   ASSERT_EQ(first.type(), CV_32FC1);
   EXPECT_EQ(std::memcmp(first.data, second.data, first.total() * first.elemSize()), 0);
   EXPECT_TRUE(std::isnan(first.at<float>(0, 0)));
@@ -199,7 +201,7 @@ TEST(FillDepth, KeepsEveryOtherPixelAndIsDeterministic) {
   EXPECT_EQ(cv::norm(first, input, cv::NORM_INF, outside), 0);
   EXPECT_EQ(cv::countNonZero(invalid_depth_mask(first) & hole), 0);
   cv::Mat in_place = input.clone();
-  fill_depth(in_place, cv::noArray(), in_place);
+  fill_depth(in_place, cv::noArray(), in_place, options);
   EXPECT_EQ(std::memcmp(first.data, in_place.data, first.total() * first.elemSize()), 0);
 }
 
@@ -237,39 +239,79 @@ TEST(FillDepth, SameResultAtAnyThreadCount) {
   }
 }
 
-// Holes larger than max_hole_pixels and holes on the border are left unless asked; a hole with no
-// valid pixel around it is left and counted.
-TEST(FillDepth, LeavesLargeBorderAndUnsupportedHoles) {
+// By default every hole is filled, those on the image border too. Holes larger than
+// max_hole_pixels, holes on the border with keep_border and a hole with no valid pixel around it
+// are left, counted in holes and pixels by reason; filled_mask is exactly the pixels filled.
+TEST(FillDepth, FillsEveryHoleUnlessAskedAndCountsWhatIsLeft) {
   cv::Mat input(kSize, CV_16U, cv::Scalar(2000));
   input(cv::Rect(0, 200, 5, 5)).setTo(0);      // on the border, 25 px
   input(cv::Rect(300, 200, 20, 20)).setTo(0);  // 400 px
   input(cv::Rect(490, 290, 25, 25)).setTo(0);  // 625 px
   input(cv::Rect(100, 100, 3, 3)).setTo(0);    // 9 px
+  cv::Mat filled;
+  DepthFillStats stats = fill_depth(input, cv::noArray(), filled);
+  EXPECT_EQ(stats.filled, 4);
+  EXPECT_EQ(stats.left_holes(), 0);
+  EXPECT_EQ(stats.left_pixels(), 0);
+  EXPECT_EQ(cv::countNonZero(filled != 2000), 0);
+  EXPECT_EQ(cv::norm(stats.filled_mask, input == 0, cv::NORM_INF), 0);
+
   DepthFillOptions options;
   options.max_hole_pixels = 100;
-  cv::Mat filled;
-  DepthFillStats stats = fill_depth(input, cv::noArray(), filled, options);
+  options.keep_border = true;
+  stats = fill_depth(input, cv::noArray(), filled, options);
   EXPECT_EQ(stats.holes, 4);
   EXPECT_EQ(stats.filled, 1);
   EXPECT_EQ(stats.filled_pixels, 9);
-  EXPECT_EQ(stats.at_border, 1);
-  EXPECT_EQ(stats.too_large, 2);
+  EXPECT_EQ(stats.at_border.holes, 1);
+  EXPECT_EQ(stats.at_border.pixels, 25);
+  EXPECT_EQ(stats.too_large.holes, 2);
+  EXPECT_EQ(stats.too_large.pixels, 1025);
+  EXPECT_EQ(stats.left_pixels(), 1050);
   cv::Mat expected = input.clone();
   expected(cv::Rect(100, 100, 3, 3)).setTo(2000);
   EXPECT_EQ(cv::norm(filled, expected, cv::NORM_INF), 0);
-
-  options.max_hole_pixels = 0;
-  options.fill_border = true;
-  stats = fill_depth(input, cv::noArray(), filled, options);
-  EXPECT_EQ(stats.filled, 4);
-  EXPECT_EQ(cv::countNonZero(filled != 2000), 0);
+  EXPECT_EQ(cv::countNonZero(stats.filled_mask), 9);
+  EXPECT_EQ(cv::countNonZero(stats.filled_mask(cv::Rect(100, 100, 3, 3))), 9);
 
   cv::Mat inner = cv::Mat::zeros(kSize, CV_8U);  // inside the invalid 25x25 square
   inner(cv::Rect(500, 300, 5, 5)).setTo(255);
-  stats = fill_depth(input, inner, filled, options);
+  stats = fill_depth(input, inner, filled);
   EXPECT_EQ(stats.holes, 1);
-  EXPECT_EQ(stats.without_support, 1);
+  EXPECT_EQ(stats.without_support.holes, 1);
+  EXPECT_EQ(stats.without_support.pixels, 25);
+  EXPECT_EQ(cv::countNonZero(stats.filled_mask), 0);
   EXPECT_EQ(cv::norm(filled, input, cv::NORM_INF), 0);
+}
+
+// A hole open to the image border is extrapolated from inside with the occlusion rule: a shadow
+// band beside a near box, running into the border, takes the wall's depth behind it, never the
+// box's, and a band along the border continues the tilted floor's slope.
+TEST(FillDepth, BorderHolesAreExtrapolatedWithTheOcclusionRule) {
+  cv::Mat input(kSize, CV_16U);
+  for (int row = 0; row < input.rows; ++row) {
+    // A floor whose depth grows by 2 mm a row, a box at 1 m in columns 200..299.
+    input.row(row).setTo(3000 + 2 * row);
+  }
+  input(cv::Rect(200, 0, 100, 300)).setTo(1000);  // the box, touching the top border
+  cv::Mat truth = input.clone();
+  input(cv::Rect(180, 0, 20, 300)).setTo(0);  // its shadow, from the top border down
+  input(cv::Rect(0, 470, 640, 10)).setTo(0);  // an invalid band along the bottom border
+  cv::Mat filled;
+  const DepthFillStats stats = fill_depth(input, cv::noArray(), filled);
+  EXPECT_EQ(stats.left_pixels(), 0);
+  EXPECT_EQ(cv::countNonZero(filled == 0), 0);
+  cv::Mat error;
+  cv::absdiff(filled, truth, error);
+  double worst = 0;
+  // The border is a free edge: the slope of the floor flattens there (35 mm at the top row); the
+  // box is 2 m nearer.
+  cv::minMaxLoc(error(cv::Rect(180, 0, 20, 300)), nullptr, &worst);
+  EXPECT_LT(worst, 50) << "the shadow took the box's depth";
+  cv::minMaxLoc(error(cv::Rect(0, 470, 640, 10)), nullptr, &worst);
+  EXPECT_LT(worst, 50) << "the bottom band is off the floor";
+  const cv::Mat kept = input != 0;
+  EXPECT_EQ(cv::norm(filled, input, cv::NORM_INF, kept), 0);
 }
 
 // Wrong types and a mask of another size are refused with a one-line message saying what is wrong.
@@ -539,7 +581,6 @@ TEST(FillDepth, BeatsCvInpaintOnSensorFrames) {
     for (const std::string& backend : inpainter_names()) {
       DepthFillOptions options;
       options.inpainter = backend;
-      options.fill_border = true;
       cv::Mat filled;
       fill_depth(input, punched, filled, options);
       EXPECT_EQ(cv::countNonZero(punched & (filled == 0)), 0) << name << " " << backend;

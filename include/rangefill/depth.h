@@ -29,7 +29,7 @@ struct DepthFillOptions {
   InpainterOptions inpainting = depth_inpainting_defaults();
   int threads = 1;                // holes filled at once; the result does not depend on it
   long long max_hole_pixels = 0;  // larger holes are left as they are; 0: no limit
-  bool fill_border = false;       // also fill holes that touch the image border
+  bool keep_border = false;       // leave holes that touch the image border as they are
   /// Depths z1 < z2 lie on different surfaces when z2 > (1 + discontinuity)·z1.
   double discontinuity = 0.05;
   /// Surface fitted to the valid pixels within `trend_ring` pixels of a hole, removed before the
@@ -42,13 +42,24 @@ struct DepthFillOptions {
 
 /// What fill_depth did. A hole is a connected component (8-neighbourhood) of the mask.
 struct DepthFillStats {
+  /// Holes left as they are for one reason, and their pixels.
+  struct Left {
+    int holes = 0;
+    long long pixels = 0;
+  };
   int holes = 0;
   int filled = 0;
   long long filled_pixels = 0;
-  int at_edge = 0;          // filled holes beside an occluding edge (step 1 of fill_depth)
-  int too_large = 0;        // left as they are: more than max_hole_pixels
-  int at_border = 0;        // left: touch the border and fill_border is false
-  int without_support = 0;  // left: no valid pixel borders them
+  int at_edge = 0;       // filled holes beside an occluding edge (step 1 of fill_depth)
+  Left too_large;        // more than max_hole_pixels
+  Left at_border;        // touch the image border, and keep_border is set
+  Left without_support;  // no valid pixel borders them
+  cv::Mat filled_mask;   // CV_8UC1, the depth's size: 255 at the pixels this call filled
+
+  int left_holes() const { return too_large.holes + at_border.holes + without_support.holes; }
+  long long left_pixels() const {
+    return too_large.pixels + at_border.pixels + without_support.pixels;
+  }
 };
 
 /// Fills the holes of a depth map with an inpainting back-end, in the idiom of cv::inpaint.
@@ -62,7 +73,11 @@ struct DepthFillStats {
 /// out of range (discontinuity ≤ 0, margin < 1, max_hole_pixels < 0, threads < 1).
 ///
 /// Each hole (a connected component of the mask, 8-neighbourhood) is filled on its own, from a
-/// window of `margin` pixels around it. Its rim is the valid pixels 8-adjacent to it.
+/// window of `margin` pixels around it. Its rim is the valid pixels 8-adjacent to it. A hole that
+/// touches the image border is filled like the others (unless keep_border): the back-ends treat
+/// the border as a free edge, so the fill is extrapolated from the rim inside the image, under the
+/// same occlusion rule. `stats.filled_mask` tells which pixels were filled; a hole is left only
+/// for a reason counted in the stats (too large, at the border when asked, no valid rim).
 ///  1. Occluding edges. Looking across the hole from a rim pixel p in each of the 8 directions, the
 ///     first valid pixel q beyond the hole lies behind p when it is deeper by more than
 ///     `discontinuity` and p is nearer than q's surface continued to p by as much (q's local plane:
@@ -94,6 +109,10 @@ cv::Mat read_depth_image(const std::filesystem::path& path);
 
 /// Reads a mask image of any depth, one channel: CV_8UC1, 255 where the file is non-zero.
 cv::Mat read_mask_image(const std::filesystem::path& path);
+
+/// Writes a mask (CV_8UC1) as an 8-bit PNG or TIFF, by the extension, atomically. Throws
+/// InvalidInput (another type or extension) or IoError, naming the file.
+void write_mask_image(const cv::Mat& mask, const std::filesystem::path& path);
 
 /// True when the extension of `path` (any case) is one of the depth image formats: .png, .tif,
 /// .tiff, .exr.

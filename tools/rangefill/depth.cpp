@@ -17,33 +17,52 @@ namespace {
 namespace fs = std::filesystem;
 
 struct DepthCommand {
-  std::string input, output, mask, batch, out_dir, shard = "0/1", trend = "none";
+  std::string input, output, mask, filled_mask, batch, out_dir, mask_dir, shard = "0/1";
+  std::string trend = "none";
   int threads = 1;
   bool json = false;
   DepthFillOptions options;
 };
 
 nlohmann::json stats_json(const DepthFillStats& stats) {
+  auto left = [](const DepthFillStats::Left& left) {
+    return nlohmann::json{{"holes", left.holes}, {"pixels", left.pixels}};
+  };
   return {{"holes", stats.holes},
           {"filled", stats.filled},
           {"filled_pixels", stats.filled_pixels},
           {"at_edge", stats.at_edge},
-          {"too_large", stats.too_large},
-          {"at_border", stats.at_border},
-          {"without_support", stats.without_support}};
+          {"left_holes", stats.left_holes()},
+          {"left_pixels", stats.left_pixels()},
+          {"left",
+           {{"too_large", left(stats.too_large)},
+            {"at_border", left(stats.at_border)},
+            {"without_support", left(stats.without_support)}}}};
 }
 
+// "12 holes, 11 filled (3052 pixels, 4 beside a depth edge); left: 1 hole, 25 pixels (at the
+// border 1 / 25)": what is left only by the reasons that left something.
 std::string stats_text(const DepthFillStats& stats) {
-  return std::to_string(stats.holes) + " holes, " + std::to_string(stats.filled) + " filled (" +
-         std::to_string(stats.filled_pixels) + " pixels, " + std::to_string(stats.at_edge) +
-         " beside a depth edge); left: " + std::to_string(stats.too_large) + " too large, " +
-         std::to_string(stats.at_border) + " on the border, " +
-         std::to_string(stats.without_support) + " without valid neighbours";
+  std::string text = std::to_string(stats.holes) + " holes, " + std::to_string(stats.filled) +
+                     " filled (" + std::to_string(stats.filled_pixels) + " pixels, " +
+                     std::to_string(stats.at_edge) +
+                     " beside a depth edge); left: " + std::to_string(stats.left_holes()) +
+                     " holes, " + std::to_string(stats.left_pixels()) + " pixels";
+  std::string reasons;
+  for (const auto& [name, left] : {std::pair{"too large", stats.too_large},
+                                   {"at the border", stats.at_border},
+                                   {"without valid neighbours", stats.without_support}}) {
+    if (left.holes == 0) continue;
+    reasons += std::string(reasons.empty() ? "" : ", ") + name + " " + std::to_string(left.holes) +
+               " / " + std::to_string(left.pixels);
+  }
+  return text + (reasons.empty() ? "" : " (" + reasons + ")");
 }
 
-// Reads, fills and writes one image (`mask` empty: fill the invalid pixels).
+// Reads, fills and writes one image (`mask` empty: fill the invalid pixels); with `filled_mask`,
+// also the mask of the pixels filled (8-bit PNG, 255 = filled).
 DepthFillStats fill_file(const fs::path& input, const fs::path& mask, const fs::path& output,
-                         const DepthFillOptions& options) {
+                         const fs::path& filled_mask, const DepthFillOptions& options) {
   const cv::Mat depth = read_depth_image(input);
   check_depth_format(output, depth.type());
   cv::Mat filled;
@@ -55,6 +74,7 @@ DepthFillStats fill_file(const fs::path& input, const fs::path& mask, const fs::
                        error.what());
   }
   write_depth_image(filled, output);
+  if (!filled_mask.empty()) write_mask_image(stats.filled_mask, filled_mask);
   return stats;
 }
 
@@ -68,14 +88,24 @@ int run_single(const DepthCommand& command) {
   if (!is_depth_image_path(command.output)) {
     throw UsageError(command.output + ": unknown format (expected .png, .tif, .tiff or .exr)");
   }
-  if (same_file(command.output, command.input) ||
-      (!command.mask.empty() && same_file(command.output, command.mask))) {
-    throw UsageError(command.output + ": is an input; choose another output");
+  if (!command.filled_mask.empty() && !is_depth_image_path(command.filled_mask)) {
+    throw UsageError(command.filled_mask + ": unknown format (expected .png, .tif or .tiff)");
+  }
+  for (const std::string& written : {command.output, command.filled_mask}) {
+    if (!written.empty() && (same_file(written, command.input) ||
+                             (!command.mask.empty() && same_file(written, command.mask)))) {
+      throw UsageError(written + ": is an input; choose another output");
+    }
+  }
+  if (!command.filled_mask.empty() &&
+      (command.filled_mask == command.output || same_file(command.filled_mask, command.output))) {
+    throw UsageError(command.filled_mask + ": is the output; choose another file");
   }
   const auto start = std::chrono::steady_clock::now();
   DepthFillOptions options = command.options;
   options.threads = command.threads;
-  const DepthFillStats stats = fill_file(command.input, command.mask, command.output, options);
+  const DepthFillStats stats =
+      fill_file(command.input, command.mask, command.output, command.filled_mask, options);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (command.json) {
@@ -114,8 +144,14 @@ struct FileOutcome {
 };
 
 int run_batch(const DepthCommand& command) {
-  if (!command.input.empty() || !command.output.empty() || !command.mask.empty()) {
-    throw UsageError("--batch takes no input file, -o or --mask (outputs go to --out-dir)");
+  if (!command.input.empty() || !command.output.empty() || !command.mask.empty() ||
+      !command.filled_mask.empty()) {
+    throw UsageError(
+        "--batch takes no input file, -o, --mask or --filled-mask (outputs go to --out-dir, "
+        "masks come from --mask-dir)");
+  }
+  if (!command.mask_dir.empty() && !fs::is_directory(command.mask_dir)) {
+    throw IoError(command.mask_dir + ": not a directory");
   }
   if (command.out_dir.empty()) throw UsageError("--batch needs --out-dir");
   const auto [shard, shards] = parse_shard(command.shard);
@@ -141,7 +177,14 @@ int run_batch(const DepthCommand& command) {
     FileOutcome& outcome = outcomes[i];
     try {
       if (same_file(output, files[i])) throw IoError(output.string() + ": is the input");
-      outcome.stats = fill_file(files[i], {}, output, command.options);
+      // A frame's mask has its file name in --mask-dir; a frame without one is refused.
+      fs::path mask;
+      if (!command.mask_dir.empty()) {
+        mask = fs::path(command.mask_dir) / files[i].filename();
+        if (!fs::exists(mask)) throw IoError(files[i].string() + ": no mask " + mask.string());
+        if (same_file(output, mask)) throw IoError(output.string() + ": is a mask");
+      }
+      outcome.stats = fill_file(files[i], mask, output, {}, command.options);
       outcome.written = true;
     } catch (const std::exception& error) {
       outcome.error = error.what();
@@ -197,6 +240,10 @@ void add_depth_command(CLI::App& app, Runner& runner) {
   sub->add_option("-o,--output", command->output, "Filled depth image (format from the extension)");
   sub->add_option("--mask", command->mask,
                   "Pixels to fill: non-zero in this one-channel image (default: the invalid ones)");
+  sub->add_option("--filled-mask", command->filled_mask,
+                  "Write the mask of the pixels filled here (8-bit PNG, 255 = filled)");
+  sub->add_option("--mask-dir", command->mask_dir,
+                  "With --batch: each frame's mask, the file of the same name in this directory");
   sub->add_option("--batch", command->batch, "Fill every depth image of this directory");
   sub->add_option("--out-dir", command->out_dir, "Where --batch writes (same file names)");
   sub->add_option("--threads", command->threads,
@@ -214,10 +261,11 @@ void add_depth_command(CLI::App& app, Runner& runner) {
       ->check(CLI::IsMember(inpainter_names()));
   add_foe_inference_options(sub, options.inpainting);
   sub->add_option("--max-hole", options.max_hole_pixels,
-                  "Leave holes of more pixels as they are (0: no limit)")
+                  "Leave holes of more pixels as they are (0, the default: no limit)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  sub->add_flag("--fill-border", options.fill_border, "Also fill holes touching the image border");
+  sub->add_flag("--keep-border", options.keep_border,
+                "Leave holes that touch the image border as they are (filled by default)");
   sub->add_option("--discontinuity", options.discontinuity,
                   "Relative depth jump that separates two surfaces around a hole")
       ->capture_default_str()

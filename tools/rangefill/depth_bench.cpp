@@ -98,7 +98,6 @@ int run_depth_bench(const DepthBenchCommand& command) {
   }
   DepthFillOptions fill = command.fill;
   fill.trend = trend_from_name(command.trend);
-  fill.fill_border = true;  // every punched pixel is scored
   if (command.meshes.empty() && command.frames.empty()) {
     throw UsageError("give --meshes, --frames or both");
   }
