@@ -43,6 +43,11 @@ ReadResult parse_mesh(std::string_view bytes, MeshFormat format, const std::stri
       result = detail::parse_stl(bytes, name);
       break;
   }
+  if (result.mesh.positions.empty()) {
+    // A text file named .obj reads as an OBJ file without statements: not a mesh at all.
+    detail::fail(name, format == MeshFormat::obj ? "no vertex ('v' line): not an OBJ mesh"
+                                                 : "holds no vertices: nothing to read as a mesh");
+  }
   validate_mesh(result.mesh, name);
   return result;
 }

@@ -125,17 +125,26 @@ TEST(Cli, BadFilesExitWithThreeAndAOneLineMessageNamingTheFile) {
       {"nan.ply", header + triangle_body(std::numeric_limits<float>::quiet_NaN())},
       {"huge.ply", binary_ply_header("1099511627776") + body},
       {"missing.ply", "-"},
+      // Files whose content is not what their name says, or no mesh at all.
+      {"text.obj", "hello world\nthis is text, not a mesh\n"},
+      {"text.ply", "hello world\n"},
+      {"no-vertices.off", "OFF\n0 0 0\n"},
+      {"no-facets.stl", "solid x\nendsolid x\n"},
   };
   for (const auto& [name, bytes] : cases) {
     SCOPED_TRACE(name);
     const fs::path path = dir / name;
     if (bytes != "-") write_bytes(path, bytes);
     // 2 GB of address space: a reader allocating from the declared 2^40 vertices would fail.
-    const Outcome result = run("info " + path.string(), RANGEFILL_SANITIZED ? 0 : 2'000'000);
-    EXPECT_EQ(result.exit_code, 3) << result.err;
-    EXPECT_NE(result.err.find(path.string()), std::string::npos) << result.err;
-    EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+    for (const std::string command : {"info " + path.string(), "repair " + path.string() + " -o " +
+                                                                   (dir / "out.ply").string()}) {
+      const Outcome result = run(command, RANGEFILL_SANITIZED ? 0 : 2'000'000);
+      EXPECT_EQ(result.exit_code, 3) << result.err;
+      EXPECT_NE(result.err.find(path.string()), std::string::npos) << result.err;
+      EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+    }
   }
+  EXPECT_FALSE(fs::exists(dir / "out.ply"));
   fs::remove_all(dir);
 }
 
@@ -530,8 +539,8 @@ TEST(Cli, RepairChoosesItsLoopsAndSaysWhichItLeftOpen) {
 
   const Outcome missing = run(repair + (dir / "missing.ply").string() + " --holes 7");
   EXPECT_EQ(missing.exit_code, 3);
-  EXPECT_EQ(missing.err,
-            "rangefill: repair: there is no boundary loop 7 to fill (the mesh has 3)\n");
+  EXPECT_EQ(missing.err, "rangefill: " + (dir / "sheet.ply").string() +
+                             ": repair: there is no boundary loop 7 to fill (the mesh has 3)\n");
   EXPECT_FALSE(fs::exists(dir / "missing.ply"));
 
   const Outcome all = run(repair + (dir / "all.ply").string() + " --fill-all --report " +

@@ -64,6 +64,16 @@ void write_debug_images(const std::string& dir, const HoleImages& images) {
   }
 }
 
+// What `work` returns; its InvalidInput says which file it is about.
+template <typename Work>
+auto naming_the_input(const std::string& input, Work work) {
+  try {
+    return work();
+  } catch (const InvalidInput& error) {
+    throw InvalidInput(input + ": " + error.what());
+  }
+}
+
 // Throws UsageError when `path` (an output) names the same file as `other` (when that exists).
 void refuse_same_file(const std::string& path, const std::string& other, const std::string& what) {
   std::error_code error;
@@ -221,7 +231,7 @@ int run_repair(RepairCommand& command) {
       throw InvalidInput(command.input +
                          ": a point cloud without faces (--mesher greedy meshes it)");
     }
-    mesh = mesh_point_cloud(mesh);
+    mesh = naming_the_input(command.input, [&] { return mesh_point_cloud(mesh); });
     std::cerr << "rangefill: note: " << command.input << ": meshed " << mesh.vertex_count()
               << " points into " << mesh.face_count() << " triangles (greedy projection)\n";
   }
@@ -245,7 +255,8 @@ int run_repair(RepairCommand& command) {
   }
 
   const auto start = std::chrono::steady_clock::now();
-  const RepairResult result = repair(mesh, command.options);
+  const RepairResult result =
+      naming_the_input(command.input, [&] { return repair(mesh, command.options); });
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (progress && done > 0) std::fprintf(stderr, "\r\033[K");
