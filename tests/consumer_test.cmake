@@ -1,4 +1,5 @@
-# Installs rangefill into a scratch prefix, then configures, builds and runs tests/consumer against it.
+# Configures, builds and runs tests/consumer against rangefill: with -DMODE=install, installed into
+# a scratch prefix; with -DMODE=build, the build tree itself (rangefill_DIR=<build>).
 # Arguments: -DBINARY_DIR=<rangefill build> -DSOURCE_DIR=<rangefill source> -DWORK_DIR=<scratch>
 # -DCOMPILER=<C++ compiler of the consumer> -DFLAGS=<its compiler and linker flags, may be empty>
 file(REMOVE_RECURSE ${WORK_DIR})
@@ -8,9 +9,16 @@ function(run)
     message(FATAL_ERROR "failed (${result}): ${ARGN}\n${output}")
   endif()
 endfunction()
-run(${CMAKE_COMMAND} --install ${BINARY_DIR} --prefix ${WORK_DIR}/prefix)
+if(MODE STREQUAL "install")
+  run(${CMAKE_COMMAND} --install ${BINARY_DIR} --prefix ${WORK_DIR}/prefix)
+  set(where -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix)
+elseif(MODE STREQUAL "build")
+  set(where -Drangefill_DIR=${BINARY_DIR})
+else()
+  message(FATAL_ERROR "MODE must be install or build, not '${MODE}'")
+endif()
 run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/consumer -B ${WORK_DIR}/build
-    -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=${COMPILER}
+    ${where} -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=${COMPILER}
     "-DCMAKE_CXX_FLAGS=${FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${FLAGS}")
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run(${WORK_DIR}/build/consumer)
