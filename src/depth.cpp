@@ -148,6 +148,30 @@ cv::Mat fill_source(const cv::Mat& z, const cv::Mat& data, const cv::Mat& hole,
   return source;
 }
 
+// Before step 3 of fill_depth: every pixel of the window farther than `reach` from the source
+// takes the depth of its nearest source pixel and joins the source, so that the back-end restores
+// a band of `reach` pixels along the source however large the hole is. `z` is replaced by a copy
+// when it changes.
+void extend_source_beyond_reach(cv::Mat& z, cv::Mat& source, int reach) {
+  cv::Mat distance, nearest;
+  cv::distanceTransform(source == 0, distance, nearest, cv::DIST_L2, cv::DIST_MASK_5,
+                        cv::DIST_LABEL_PIXEL);
+  const cv::Mat far = distance > reach;
+  if (cv::countNonZero(far) == 0) return;
+  std::vector<cv::Point> source_pixels;
+  cv::findNonZero(source, source_pixels);
+  std::vector<float> depth_of_label(source_pixels.size() + 1, 0);
+  for (const cv::Point& p : source_pixels) depth_of_label[nearest.at<int>(p)] = z.at<float>(p);
+  z = z.clone();
+  for (int row = 0; row < z.rows; ++row) {
+    for (int col = 0; col < z.cols; ++col) {
+      if (far.at<std::uint8_t>(row, col))
+        z.at<float>(row, col) = depth_of_label[nearest.at<int>(row, col)];
+    }
+  }
+  source |= far;
+}
+
 // Step 3 of fill_depth: depth (metres) at the hole pixels of a window, restored from `source`.
 cv::Mat fill_from_source(const cv::Mat& z, const cv::Mat& hole, const cv::Mat& source,
                          const Inpainter& inpainter, const DepthFillOptions& options) {
@@ -214,13 +238,15 @@ HoleOutcome fill_hole(const cv::Mat& z, const cv::Mat& data, const cv::Mat& labe
   const cv::Rect window = cv::Rect(box.x - m, box.y - m, box.width + 2 * m, box.height + 2 * m) &
                           cv::Rect(0, 0, z.cols, z.rows);
   const cv::Mat hole = labels(window) == label;
-  const cv::Mat source =
+  cv::Mat source =
       fill_source(z(window), data(window), hole, options.discontinuity, outcome.at_edge);
   if (source.empty()) {
     outcome.kind = HoleOutcome::without_support;
     return outcome;
   }
-  const cv::Mat fill = fill_from_source(z(window), hole, source, inpainter, options);
+  cv::Mat window_z = z(window);
+  if (options.reach > 0) extend_source_beyond_reach(window_z, source, options.reach);
+  const cv::Mat fill = fill_from_source(window_z, hole, source, inpainter, options);
   // Pixel by pixel: cv::Mat::copyTo with a mask may store whole vectors, neighbours included,
   // which would race with the holes around this one.
   for (int row = 0; row < window.height; ++row) {

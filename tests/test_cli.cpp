@@ -101,6 +101,23 @@ TEST(Cli, InfoAndHolesDescribeAMesh) {
     }
   }
   EXPECT_EQ(outer, 1);
+  EXPECT_NE(info.out.find("watertight           no"), std::string::npos) << info.out;
+
+  // A closed cube is watertight; a second cube through it makes the pair of them cut each other.
+  Mesh cubes = testing::make_cube();
+  write_mesh(cubes, dir / "cube.ply");
+  const Outcome cube = run("info " + (dir / "cube.ply").string());
+  EXPECT_NE(cube.out.find("self-intersections   0 face pairs"), std::string::npos) << cube.out;
+  EXPECT_NE(cube.out.find("watertight           yes"), std::string::npos) << cube.out;
+  const Mesh second = testing::make_cube();
+  for (const Vec3& p : second.positions) cubes.positions.push_back(p + Vec3(0.5, 0.25, 0.25));
+  for (const Triangle& t : second.triangles)
+    cubes.triangles.push_back({t[0] + 8, t[1] + 8, t[2] + 8});
+  write_mesh(make_mesh(cubes.positions, cubes.triangles), dir / "cubes.ply");
+  const Outcome crossing = run("info --json " + (dir / "cubes.ply").string());
+  const nlohmann::json crossing_json = nlohmann::json::parse(crossing.out);
+  EXPECT_GT(crossing_json["self_intersecting_face_pairs"].get<int>(), 0);
+  EXPECT_FALSE(crossing_json["watertight"].get<bool>());
   fs::remove_all(dir);
 }
 

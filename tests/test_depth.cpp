@@ -314,6 +314,30 @@ TEST(FillDepth, BorderHolesAreExtrapolatedWithTheOcclusionRule) {
   EXPECT_EQ(cv::norm(filled, input, cv::NORM_INF, kept), 0);
 }
 
+// Beyond `reach` pixels from every pixel it is filled from, a hole takes the nearest one's depth:
+// the right half of a surface that waves along the rows, invalid up to the border, keeps each
+// row's last valid depth there; with no limit the back-end's membrane flattens the wave.
+TEST(FillDepth, PixelsBeyondReachTakeTheNearestDepth) {
+  cv::Mat input(kSize, CV_16U);
+  for (int row = 0; row < input.rows; ++row) {
+    input.row(row).setTo(std::lround(1000 + 200 * std::sin(row / 30.0)));
+  }
+  input(cv::Rect(320, 0, 320, 480)).setTo(0);
+  DepthFillOptions options;
+  options.reach = 4;
+  cv::Mat filled;
+  fill_depth(input, cv::noArray(), filled, options);
+  EXPECT_EQ(cv::norm(filled.col(639), input.col(319), cv::NORM_INF), 0);
+  EXPECT_EQ(cv::norm(filled, input, cv::NORM_INF, input != 0), 0);
+  options.reach = 0;
+  fill_depth(input, cv::noArray(), filled, options);
+  EXPECT_EQ(cv::countNonZero(filled == 0), 0);
+  EXPECT_EQ(cv::norm(filled, input, cv::NORM_INF, input != 0), 0);
+  double lowest = 0, highest = 0;
+  cv::minMaxLoc(filled.col(639), &lowest, &highest);
+  EXPECT_LT(highest - lowest, 40);  // the wave spans 400 mm at column 319
+}
+
 // Wrong types and a mask of another size are refused with a one-line message saying what is wrong.
 TEST(FillDepth, RefusesBadArguments) {
   const cv::Mat depth(48, 64, CV_16U, cv::Scalar(1000));

@@ -266,6 +266,11 @@ void add_depth_command(CLI::App& app, Runner& runner) {
       ->check(CLI::NonNegativeNumber);
   sub->add_flag("--keep-border", options.keep_border,
                 "Leave holes that touch the image border as they are (filled by default)");
+  sub->add_option("--reach", options.reach,
+                  "Pixels farther than this from every pixel a hole is filled from take the "
+                  "nearest one's depth; the back-end fills the band within (0: no limit)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   sub->add_option("--discontinuity", options.discontinuity,
                   "Relative depth jump that separates two surfaces around a hole")
       ->capture_default_str()
