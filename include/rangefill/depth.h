@@ -40,7 +40,7 @@ struct DepthFillOptions {
   int margin = 5;  // pixels around each hole given to the back-end (telea and ns read `radius`)
   /// Pixels farther than this from every pixel a hole is filled from take the depth of the
   /// nearest such pixel; the back-end restores the band within. 0: no limit.
-  int reach = 16;
+  int reach = 32;
 };
 
 /// What fill_depth did. A hole is a connected component (8-neighbourhood) of the mask.
