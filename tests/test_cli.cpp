@@ -153,7 +153,7 @@ TEST(Cli, BadFilesExitWithThreeAndAOneLineMessageNamingTheFile) {
     const fs::path path = dir / name;
     if (bytes != "-") write_bytes(path, bytes);
     // 2 GB of address space: a reader allocating from the declared 2^40 vertices would fail.
-    for (const std::string command : {"info " + path.string(), "repair " + path.string() + " -o " +
+    for (const std::string& command : {"info " + path.string(), "repair " + path.string() + " -o " +
                                                                    (dir / "out.ply").string()}) {
       const Outcome result = run(command, RANGEFILL_SANITIZED ? 0 : 2'000'000);
       EXPECT_EQ(result.exit_code, 3) << result.err;
