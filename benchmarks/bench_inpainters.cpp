@@ -9,8 +9,8 @@
 #include <benchmark/benchmark.h>
 #include <opencv2/photo.hpp>
 
-#include "rangefill/inpainter.h"
-#include "rangefill/patches.h"
+#include "rangefill/eval/patches.h"
+#include "rangefill/inpaint/inpainter.h"
 
 namespace {
 

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "rangefill/holes.h"
-#include "rangefill/mesh.h"
-#include "rangefill/zone.h"
+#include "rangefill/core/mesh.h"
+#include "rangefill/repair/holes.h"
+#include "rangefill/repair/zone.h"
 
 namespace rangefill::testing {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <string_view>
 
-#include "rangefill/errors.h"
-#include "rangefill/io.h"
+#include "rangefill/core/errors.h"
+#include "rangefill/io/mesh_io.h"
 
 namespace {
 

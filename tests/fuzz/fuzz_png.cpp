@@ -1,7 +1,7 @@
-// libFuzzer target for the depth-image reader's PNG check (src/png_check.h) with OpenCV's decoder
-// behind it, as read_depth_image and read_mask_image use them. For any bytes that start like a PNG,
-// check_png either throws InvalidInput with one line naming the file, or OpenCV decodes the image
-// at the size its header declares. Anything else is a finding.
+// libFuzzer target for the depth-image reader's PNG check (src/io/png_check.h) with OpenCV's
+// decoder behind it, as read_depth_image and read_mask_image use them. For any bytes that start
+// like a PNG, check_png either throws InvalidInput with one line naming the file, or OpenCV decodes
+// the image at the size its header declares. Anything else is a finding.
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -10,8 +10,8 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "png_check.h"
-#include "rangefill/errors.h"
+#include "io/png_check.h"
+#include "rangefill/core/errors.h"
 
 namespace {
 

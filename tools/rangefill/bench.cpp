@@ -10,9 +10,9 @@
 #include "bench_report.h"
 #include "cli.h"
 #include "isolation.h"
-#include "rangefill/errors.h"
-#include "rangefill/evaluation.h"
-#include "rangefill/punch.h"
+#include "rangefill/core/errors.h"
+#include "rangefill/eval/evaluation.h"
+#include "rangefill/eval/punch.h"
 
 namespace rangefill::cli {
 

@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "rangefill/evaluation.h"
+#include "rangefill/eval/evaluation.h"
 
 namespace rangefill::cli {
 

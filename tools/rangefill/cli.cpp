@@ -14,9 +14,9 @@
 #include <sstream>
 #include <thread>
 
-#include "rangefill/errors.h"
-#include "rangefill/foe.h"
-#include "rangefill/inpainter.h"
+#include "rangefill/core/errors.h"
+#include "rangefill/inpaint/foe_model.h"
+#include "rangefill/inpaint/inpainter.h"
 
 namespace rangefill::cli {
 

@@ -10,9 +10,9 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "rangefill/io.h"
-#include "rangefill/patches.h"
-#include "rangefill/pipeline.h"
+#include "rangefill/eval/patches.h"
+#include "rangefill/io/mesh_io.h"
+#include "rangefill/repair/pipeline.h"
 
 namespace rangefill::cli {
 

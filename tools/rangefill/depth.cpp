@@ -6,9 +6,10 @@
 #include <mutex>
 
 #include "cli.h"
-#include "rangefill/depth.h"
-#include "rangefill/errors.h"
-#include "rangefill/parallel.h"
+#include "rangefill/core/errors.h"
+#include "rangefill/core/parallel.h"
+#include "rangefill/depth/fill_depth.h"
+#include "rangefill/io/depth_io.h"
 
 namespace rangefill::cli {
 

@@ -11,8 +11,11 @@
 #include <opencv2/photo.hpp>
 
 #include "cli.h"
-#include "rangefill/depth.h"
-#include "rangefill/punch.h"
+#include "rangefill/depth/fill_depth.h"
+#include "rangefill/eval/punch.h"
+#include "rangefill/eval/render.h"
+#include "rangefill/eval/sensor_holes.h"
+#include "rangefill/io/depth_io.h"
 
 namespace rangefill::cli {
 

@@ -4,8 +4,8 @@
 #include <iostream>
 
 #include "cli.h"
-#include "rangefill/holes.h"
-#include "rangefill/topology.h"
+#include "rangefill/core/topology.h"
+#include "rangefill/repair/holes.h"
 
 namespace rangefill::cli {
 

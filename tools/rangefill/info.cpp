@@ -5,9 +5,9 @@
 #include <numeric>
 
 #include "cli.h"
-#include "rangefill/holes.h"
-#include "rangefill/metrics.h"
-#include "rangefill/topology.h"
+#include "rangefill/core/intersection.h"
+#include "rangefill/core/topology.h"
+#include "rangefill/repair/holes.h"
 
 namespace rangefill::cli {
 

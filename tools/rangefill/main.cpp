@@ -4,7 +4,7 @@
 #include <iostream>
 
 #include "cli.h"
-#include "rangefill/errors.h"
+#include "rangefill/core/errors.h"
 
 int main(int argc, char** argv) {
   using namespace rangefill;

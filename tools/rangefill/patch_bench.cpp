@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "cli.h"
-#include "rangefill/patches.h"
+#include "rangefill/eval/patches.h"
 
 namespace rangefill::cli {
 

@@ -9,9 +9,9 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "cli.h"
-#include "rangefill/errors.h"
-#include "rangefill/pipeline.h"
-#include "rangefill/point_cloud.h"
+#include "rangefill/core/errors.h"
+#include "rangefill/repair/pipeline.h"
+#include "rangefill/repair/point_cloud.h"
 
 namespace rangefill::cli {
 

@@ -5,10 +5,10 @@
 #include <sstream>
 
 #include "cli.h"
-#include "rangefill/foe.h"
-#include "rangefill/foe_training.h"
-#include "rangefill/io.h"
-#include "rangefill/patches.h"
+#include "rangefill/eval/foe_training.h"
+#include "rangefill/eval/patches.h"
+#include "rangefill/inpaint/foe_model.h"
+#include "rangefill/io/mesh_io.h"
 
 namespace rangefill::cli {
 

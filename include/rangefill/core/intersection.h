@@ -1,0 +1,39 @@
+// Intersection tests of triangles against a mesh: what refuses a fill that would cut through the
+// surface, and counts the self-intersections of a mesh. Exact predicates (CGAL).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "rangefill/core/mesh.h"
+
+namespace rangefill {
+
+/// The faces of a mesh in a bounding-volume tree (CGAL AABB tree) for intersection queries. The
+/// tree is built in O(F log F) on the first query; queries may run from several threads.
+class IntersectionIndex {
+ public:
+  explicit IntersectionIndex(const Mesh& mesh);
+  ~IntersectionIndex();
+  IntersectionIndex(IntersectionIndex&&) noexcept;
+  IntersectionIndex& operator=(IntersectionIndex&&) noexcept;
+
+  /// Faces that intersect the triangle (a, b, c), leaving out those that share a vertex with
+  /// `corners` (mesh vertex ids of the triangle's corners; -1 for a corner not in the mesh).
+  std::vector<int> intersecting_faces(const Vec3& a, const Vec3& b, const Vec3& c,
+                                      const Triangle& corners) const;
+
+ private:
+  struct Tree;
+  std::unique_ptr<Tree> tree_;
+};
+
+/// Whether two triangles share a point (exact predicates, CGAL). Degenerate triangles meet nothing.
+bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b);
+
+/// Pairs (f, g) with f in `faces` and g any face of the mesh, not sharing a vertex, whose triangles
+/// intersect. Each unordered pair is counted once.
+int count_self_intersections(const Mesh& mesh, const std::vector<int>& faces);
+
+}  // namespace rangefill

@@ -1,0 +1,97 @@
+// Filling the holes of depth maps with the inpainting back-ends, in the idiom of cv::inpaint
+// (conventions: depth_image.h).
+#pragma once
+
+#include <string>
+
+#include <opencv2/core.hpp>
+
+#include "rangefill/depth/depth_image.h"
+#include "rangefill/inpaint/inpainter.h"
+#include "rangefill/repair/trend.h"
+
+namespace rangefill {
+
+/// The back-ends' options fill_depth takes by default: InpainterOptions' own, except that foe
+/// refines Telea's fill by at most 10 steps, stopping earlier when one gains less than 3e-3 of E
+/// (README, depth-bench: lower RMSE than the MAP from the harmonic start, 3–5 times faster).
+InpainterOptions depth_inpainting_defaults();
+
+struct DepthFillOptions {
+  std::string inpainter = "harmonic";  // a name of inpainter_names()
+  InpainterOptions inpainting = depth_inpainting_defaults();
+  int threads = 1;                // holes filled at once; the result does not depend on it
+  long long max_hole_pixels = 0;  // larger holes are left as they are; 0: no limit
+  bool keep_border = false;       // leave holes that touch the image border as they are
+  /// Depths z1 < z2 lie on different surfaces when z2 > (1 + discontinuity)·z1.
+  double discontinuity = 0.05;
+  /// Surface fitted to the valid pixels within `trend_ring` pixels of a hole, removed before the
+  /// back-end and added back (trend.h). None by default: on depth maps the back-ends alone did
+  /// better (README, depth-bench).
+  TrendKind trend = TrendKind::none;
+  double trend_ring = 3;
+  int margin = 5;  // pixels around each hole given to the back-end (telea and ns read `radius`)
+  /// Pixels farther than this from every pixel a hole is filled from take the depth of the
+  /// nearest such pixel; the back-end restores the band within. 0: no limit.
+  int reach = 32;
+};
+
+/// What fill_depth did. A hole is a connected component (8-neighbourhood) of the mask.
+struct DepthFillStats {
+  /// Holes left as they are for one reason, and their pixels.
+  struct Left {
+    int holes = 0;
+    long long pixels = 0;
+  };
+  int holes = 0;
+  int filled = 0;
+  long long filled_pixels = 0;
+  int at_edge = 0;       // filled holes beside an occluding edge (step 1 of fill_depth)
+  Left too_large;        // more than max_hole_pixels
+  Left at_border;        // touch the image border, and keep_border is set
+  Left without_support;  // no valid pixel borders them
+  cv::Mat filled_mask;   // CV_8UC1, the depth's size: 255 at the pixels this call filled
+
+  int left_holes() const { return too_large.holes + at_border.holes + without_support.holes; }
+  long long left_pixels() const {
+    return too_large.pixels + at_border.pixels + without_support.pixels;
+  }
+};
+
+/// Fills the holes of a depth map with an inpainting back-end, in the idiom of cv::inpaint.
+///
+/// `depth`: CV_16UC1 (millimetres) or CV_32FC1 (metres). `invalid_mask`: the pixels to fill,
+/// CV_8UC1 of the same size, non-zero to fill (whatever their depth); empty (cv::noArray()) takes
+/// every invalid pixel. `filled` receives an image of the depth's type and size: every pixel
+/// outside the filled holes as given, bit for bit; 16-bit fills rounded to the millimetre. Invalid
+/// pixels outside the mask are never read as data. Deterministic at any thread count. Throws
+/// InvalidInput, with a one-line message, on a bad type or size, an unknown back-end or options
+/// out of range (discontinuity ≤ 0, margin < 1, max_hole_pixels < 0, threads < 1).
+///
+/// Each hole (a connected component of the mask, 8-neighbourhood) is filled on its own, from a
+/// window of `margin` pixels around it. Its rim is the valid pixels 8-adjacent to it. A hole that
+/// touches the image border is filled like the others (unless keep_border): the back-ends treat
+/// the border as a free edge, so the fill is extrapolated from the rim inside the image, under the
+/// same occlusion rule. `stats.filled_mask` tells which pixels were filled; a hole is left only
+/// for a reason counted in the stats (too large, at the border when asked, no valid rim).
+///  1. Occluding edges. Looking across the hole from a rim pixel p in each of the 8 directions, the
+///     first valid pixel q beyond the hole lies behind p when it is deeper by more than
+///     `discontinuity` and p is nearer than q's surface continued to p by as much (q's local plane:
+///     inverse depth fitted to its neighbours within 2 pixels on its surface). Then p occludes: it
+///     is on the near side of a depth edge the hole hides. A steep continuous surface, such as a
+///     floor at a grazing angle, continues to p and makes no edge.
+///  2. Discontinuity rule: the background goes on behind an occluder, the occluder does not go on
+///     into the hole. The hole is filled from the valid pixels whose nearest rim pixel does not
+///     occlude and lies on their surface; occluding rim pixels and the occluder behind them are not
+///     used. So a sensor shadow (a band between a near object and the background) is filled at the
+///     background's depth, never by a ramp from near to far; so is a hole across an object's
+///     silhouette, near part included, and a thin object crossing a hole is cut. A hole on a near
+///     surface that reaches its silhouette keeps the rim pixels that see their own surface across.
+///  3. The source pixels go to inverse depth 1/z, on which a plane of the scene is linear in the
+///     pixel, normalised onto [0, 1] over the source (as eq. 7–8 do for range images), minus the
+///     trend if any; the back-end restores the hole with every other pixel of the window masked;
+///     the fill is clamped to the source's range widened by half on either side.
+DepthFillStats fill_depth(cv::InputArray depth, cv::InputArray invalid_mask, cv::OutputArray filled,
+                          const DepthFillOptions& options = {});
+
+}  // namespace rangefill

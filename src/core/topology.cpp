@@ -1,0 +1,253 @@
+#include "rangefill/core/topology.h"
+
+#include <algorithm>
+#include <numeric>
+
+namespace rangefill {
+
+namespace {
+
+// Stable counting sort of `items` by key(item) in [0, key_count).
+template <typename Key>
+std::vector<int> counting_sort(const std::vector<int>& items, int key_count, Key key) {
+  std::vector<int> offsets(static_cast<size_t>(key_count) + 1, 0);
+  for (int item : items) ++offsets[key(item) + 1];
+  std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
+  std::vector<int> sorted(items.size());
+  for (int item : items) sorted[offsets[key(item)]++] = item;
+  return sorted;
+}
+
+int find_root(std::vector<int>& parent, int x) {
+  while (parent[x] != x) {
+    parent[x] = parent[parent[x]];
+    x = parent[x];
+  }
+  return x;
+}
+
+// Vertex-to-face incidence in CSR form, faces ascending.
+void build_vertex_faces(const Mesh& mesh, MeshTopology& topology) {
+  const int vertex_count = mesh.vertex_count();
+  topology.vertex_face_offsets.assign(static_cast<size_t>(vertex_count) + 1, 0);
+  for (const Triangle& t : mesh.triangles) {
+    for (int v : t) ++topology.vertex_face_offsets[v + 1];
+  }
+  std::partial_sum(topology.vertex_face_offsets.begin(), topology.vertex_face_offsets.end(),
+                   topology.vertex_face_offsets.begin());
+  topology.vertex_faces.resize(topology.vertex_face_offsets.back());
+  std::vector<int> cursor(topology.vertex_face_offsets.begin(),
+                          topology.vertex_face_offsets.end() - 1);
+  for (int f = 0; f < mesh.face_count(); ++f) {
+    for (int v : mesh.triangles[f]) topology.vertex_faces[cursor[v]++] = f;
+  }
+}
+
+// Groups half-edges into undirected edges (radix sort on (min, max) vertex) and pairs opposites.
+void build_edges(const Mesh& mesh, MeshTopology& topology) {
+  const int halfedge_count = 3 * mesh.face_count();
+  auto source = [&](int h) { return topology.halfedge_source(mesh, h); };
+  auto target = [&](int h) { return topology.halfedge_target(mesh, h); };
+  auto low = [&](int h) { return std::min(source(h), target(h)); };
+  auto high = [&](int h) { return std::max(source(h), target(h)); };
+
+  std::vector<int> halfedges(halfedge_count);
+  std::iota(halfedges.begin(), halfedges.end(), 0);
+  halfedges = counting_sort(halfedges, mesh.vertex_count(), high);
+  topology.edge_halfedges = counting_sort(halfedges, mesh.vertex_count(), low);
+
+  topology.opposite.assign(halfedge_count, kBoundary);
+  topology.halfedge_edge.assign(halfedge_count, -1);
+  topology.edges.clear();
+  const std::vector<int>& sorted = topology.edge_halfedges;
+  for (int begin = 0; begin < halfedge_count;) {
+    int end = begin + 1;
+    while (end < halfedge_count && low(sorted[end]) == low(sorted[begin]) &&
+           high(sorted[end]) == high(sorted[begin])) {
+      ++end;
+    }
+    const int edge = static_cast<int>(topology.edges.size());
+    topology.edges.push_back({low(sorted[begin]), high(sorted[begin]), begin, end - begin});
+    for (int i = begin; i < end; ++i) topology.halfedge_edge[sorted[i]] = edge;
+    if (end - begin == 2) {
+      const int a = sorted[begin], b = sorted[begin + 1];
+      if (source(a) == target(b)) {
+        topology.opposite[a] = b;
+        topology.opposite[b] = a;
+      } else {
+        topology.opposite[a] = topology.opposite[b] = kNonManifold;
+        ++topology.misoriented_edge_count;
+      }
+    } else if (end - begin > 2) {
+      for (int i = begin; i < end; ++i) topology.opposite[sorted[i]] = kNonManifold;
+      ++topology.nonmanifold_edge_count;
+    }
+    begin = end;
+  }
+}
+
+// Components of faces joined through manifold edges (and misoriented or non-manifold ones).
+void build_components(const Mesh& mesh, MeshTopology& topology) {
+  std::vector<int> parent(mesh.face_count());
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const Edge& edge : topology.edges) {
+    const int first_face = halfedge_face(topology.edge_halfedges[edge.first]);
+    for (int i = 1; i < edge.count; ++i) {
+      const int face = halfedge_face(topology.edge_halfedges[edge.first + i]);
+      parent[find_root(parent, face)] = find_root(parent, first_face);
+    }
+  }
+  topology.face_component.assign(mesh.face_count(), -1);
+  std::vector<int> root_component(mesh.face_count(), -1);
+  topology.component_count = 0;
+  for (int f = 0; f < mesh.face_count(); ++f) {
+    const int root = find_root(parent, f);
+    if (root_component[root] < 0) root_component[root] = topology.component_count++;
+    topology.face_component[f] = root_component[root];
+  }
+}
+
+// The fans of faces around vertex v: its faces linked through the two-face edges at v. `parent` is
+// scratch space.
+int count_fans(const Mesh& mesh, const MeshTopology& topology, int v, std::vector<int>& parent) {
+  const int begin = topology.vertex_face_offsets[v];
+  const int end = topology.vertex_face_offsets[v + 1];
+  parent.resize(end - begin);
+  std::iota(parent.begin(), parent.end(), 0);
+  int fans = end - begin;
+  for (int i = begin; i < end; ++i) {
+    const int face = topology.vertex_faces[i];
+    for (int corner = 0; corner < 3; ++corner) {
+      const int h = 3 * face + corner;
+      if (topology.halfedge_source(mesh, h) != v) continue;
+      // The two edges of `face` at v are the one leaving v and the one entering it.
+      for (int at_v : {h, prev_halfedge(h)}) {
+        const Edge& edge = topology.edges[topology.halfedge_edge[at_v]];
+        if (edge.count != 2) continue;
+        const int h0 = topology.edge_halfedges[edge.first];
+        const int neighbour =
+            halfedge_face(h0 == at_v ? topology.edge_halfedges[edge.first + 1] : h0);
+        const auto other = std::lower_bound(topology.vertex_faces.begin() + begin,
+                                            topology.vertex_faces.begin() + end, neighbour);
+        const int a = find_root(parent, i - begin);
+        const int b =
+            find_root(parent, static_cast<int>(other - topology.vertex_faces.begin()) - begin);
+        if (a != b) {
+          parent[a] = b;
+          --fans;
+        }
+      }
+    }
+  }
+  return fans;
+}
+
+// A vertex is non-manifold when its faces form more than one fan (a pinch, or faces meeting at a
+// non-manifold edge).
+void find_nonmanifold_vertices(const Mesh& mesh, MeshTopology& topology) {
+  std::vector<int> parent;
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    if (count_fans(mesh, topology, v, parent) > 1) topology.nonmanifold_vertices.push_back(v);
+  }
+}
+
+}  // namespace
+
+MeshTopology build_topology(const Mesh& mesh) {
+  MeshTopology topology;
+  build_vertex_faces(mesh, topology);
+  build_edges(mesh, topology);
+  build_components(mesh, topology);
+  find_nonmanifold_vertices(mesh, topology);
+  return topology;
+}
+
+int find_halfedge(const Mesh& mesh, const MeshTopology& topology, int from, int to) {
+  for (int i = topology.faces_of_vertex_begin(from); i < topology.faces_of_vertex_end(from); ++i) {
+    const int face = topology.vertex_faces[i];
+    for (int corner = 0; corner < 3; ++corner) {
+      const int h = 3 * face + corner;
+      if (topology.halfedge_source(mesh, h) == from && topology.halfedge_target(mesh, h) == to) {
+        return h;
+      }
+    }
+  }
+  return -1;
+}
+
+}  // namespace rangefill
+
+namespace rangefill {
+
+bool MeshDefects::any() const {
+  return nonmanifold_edges + misoriented_edges + nonmanifold_vertices + duplicated_faces +
+             degenerate_faces >
+         0;
+}
+
+std::string describe(const MeshDefects& defects) {
+  std::string text;
+  auto add = [&](int count, const std::string& one, const std::string& several) {
+    if (count == 0) return;
+    text += (text.empty() ? "" : ", ") + std::to_string(count) + " " + (count == 1 ? one : several);
+  };
+  add(defects.nonmanifold_edges, "non-manifold edge", "non-manifold edges");
+  add(defects.misoriented_edges, "misoriented edge", "misoriented edges");
+  add(defects.nonmanifold_vertices, "non-manifold vertex", "non-manifold vertices");
+  add(defects.duplicated_faces, "duplicated face", "duplicated faces");
+  add(defects.degenerate_faces, "degenerate face", "degenerate faces");
+  return text;
+}
+
+MeshDefects find_defects(const Mesh& mesh, const MeshTopology& topology) {
+  MeshDefects defects;
+  defects.nonmanifold_edges = topology.nonmanifold_edge_count;
+  defects.misoriented_edges = topology.misoriented_edge_count;
+  defects.nonmanifold_vertices = static_cast<int>(topology.nonmanifold_vertices.size());
+  std::vector<Triangle> sorted = mesh.triangles;
+  for (Triangle& t : sorted) std::sort(t.begin(), t.end());
+  std::sort(sorted.begin(), sorted.end());
+  defects.duplicated_faces = static_cast<int>(
+      sorted.size() - (std::unique(sorted.begin(), sorted.end()) - sorted.begin()));
+  for (int f = 0; f < mesh.face_count(); ++f) {
+    if (is_degenerate(mesh, f)) ++defects.degenerate_faces;
+  }
+  return defects;
+}
+
+std::vector<int> unfillable_vertices(const Mesh& mesh, const MeshTopology& topology) {
+  std::vector<char> unfillable(mesh.vertex_count(), 0);
+  for (size_t h = 0; h < topology.opposite.size(); ++h) {
+    if (topology.opposite[h] == kNonManifold) {
+      unfillable[topology.halfedge_source(mesh, static_cast<int>(h))] = 1;
+      unfillable[topology.halfedge_target(mesh, static_cast<int>(h))] = 1;
+    }
+  }
+  // Elsewhere a vertex of several fans, each open (one boundary half-edge leaves it), all of one
+  // component, is where loops touch: fills of those loops join its fans into one.
+  std::vector<int> parent;
+  for (int v : topology.nonmanifold_vertices) {
+    if (unfillable[v]) continue;
+    int leaving_boundary = 0;
+    bool one_component = true;
+    const int first_face = topology.vertex_faces[topology.faces_of_vertex_begin(v)];
+    for (int i = topology.faces_of_vertex_begin(v); i < topology.faces_of_vertex_end(v); ++i) {
+      const int face = topology.vertex_faces[i];
+      one_component =
+          one_component && topology.face_component[face] == topology.face_component[first_face];
+      for (int corner = 0; corner < 3; ++corner) {
+        const int h = 3 * face + corner;
+        leaving_boundary +=
+            topology.halfedge_source(mesh, h) == v && topology.opposite[h] == kBoundary;
+      }
+    }
+    unfillable[v] = !one_component || leaving_boundary != count_fans(mesh, topology, v, parent);
+  }
+  std::vector<int> vertices;
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    if (unfillable[v]) vertices.push_back(v);
+  }
+  return vertices;
+}
+
+}  // namespace rangefill

@@ -1,0 +1,330 @@
+#include "rangefill/depth/fill_depth.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <exception>
+#include <limits>
+
+#include <Eigen/Dense>
+#include <opencv2/imgproc.hpp>
+
+#include "rangefill/core/errors.h"
+#include "rangefill/core/parallel.h"
+#include "rangefill/repair/range_image.h"
+
+namespace rangefill {
+
+namespace {
+
+std::string size_text(cv::Size size) {
+  return std::to_string(size.width) + "x" + std::to_string(size.height);
+}
+
+// The plane of the scene through a valid pixel: inverse depth, and its gradient (per pixel) fitted
+// to the valid pixels within 2 pixels on the same surface (0 when they do not determine it).
+struct LocalPlane {
+  double inverse = 0;
+  Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
+  cv::Point origin;
+  double at(cv::Point p) const {
+    return inverse + gradient.dot(Eigen::Vector2d(p.x - origin.x, p.y - origin.y));
+  }
+};
+
+LocalPlane local_plane(const cv::Mat& z, const cv::Mat& data, cv::Point p, double discontinuity) {
+  LocalPlane plane;
+  plane.inverse = 1 / z.at<float>(p);
+  plane.origin = p;
+  std::vector<Eigen::Vector3d> rows;
+  std::vector<double> values;
+  for (int dy = -2; dy <= 2; ++dy) {
+    for (int dx = -2; dx <= 2; ++dx) {
+      const cv::Point q = p + cv::Point(dx, dy);
+      if (q.x < 0 || q.y < 0 || q.x >= z.cols || q.y >= z.rows || !data.at<std::uint8_t>(q) ||
+          !same_surface(z.at<float>(q), z.at<float>(p), discontinuity)) {
+        continue;
+      }
+      rows.emplace_back(1, dx, dy);
+      values.push_back(1 / z.at<float>(q));
+    }
+  }
+  if (rows.size() < 3) return plane;
+  Eigen::MatrixXd a(rows.size(), 3);
+  Eigen::VectorXd b(rows.size());
+  for (size_t i = 0; i < rows.size(); ++i) {
+    a.row(i) = rows[i].transpose();
+    b[i] = values[i];
+  }
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
+  if (qr.rank() == 3) plane.gradient = qr.solve(b).tail<2>();
+  return plane;
+}
+
+// Step 1 of fill_depth: which rim pixels occlude. From rim pixel p, across the hole in each of the
+// 8 directions, the first valid pixel q lies behind p when deeper by more than `discontinuity` and
+// p is nearer than q's local plane continued to p by as much.
+std::vector<bool> occluding(const cv::Mat& z, const cv::Mat& data, const cv::Mat& hole,
+                            const std::vector<cv::Point>& rim, double discontinuity) {
+  const cv::Rect window(0, 0, z.cols, z.rows);
+  std::vector<bool> front(rim.size(), false);
+  for (size_t i = 0; i < rim.size(); ++i) {
+    for (int dy = -1; dy <= 1 && !front[i]; ++dy) {
+      for (int dx = -1; dx <= 1 && !front[i]; ++dx) {
+        const cv::Point step(dx, dy);
+        cv::Point q = rim[i] + step;
+        if (!window.contains(q) || !hole.at<std::uint8_t>(q)) continue;  // (0, 0) included
+        while (window.contains(q) && hole.at<std::uint8_t>(q)) q += step;
+        if (!window.contains(q) || !data.at<std::uint8_t>(q)) continue;
+        const float near = z.at<float>(rim[i]);
+        front[i] =
+            z.at<float>(q) > (1 + discontinuity) * near &&
+            1 / near > (1 + discontinuity) * local_plane(z, data, q, discontinuity).at(rim[i]);
+      }
+    }
+  }
+  return front;
+}
+
+// Step 2 of fill_depth: the valid pixels of a window the hole is filled from, CV_8U: those whose
+// nearest rim pixel does not occlude and is on the same surface. Empty when the hole has no rim.
+// `at_edge` tells whether some rim pixels occlude.
+cv::Mat fill_source(const cv::Mat& z, const cv::Mat& data, const cv::Mat& hole,
+                    double discontinuity, bool& at_edge) {
+  cv::Mat rim_mask;
+  cv::dilate(hole, rim_mask, cv::Mat::ones(3, 3, CV_8U));
+  rim_mask &= data;
+  std::vector<cv::Point> rim;
+  cv::findNonZero(rim_mask, rim);
+  if (rim.empty()) return {};
+  const std::vector<bool> front = occluding(z, data, hole, rim, discontinuity);
+  at_edge = std::find(front.begin(), front.end(), true) != front.end();
+  if (!at_edge) return data;
+
+  cv::Mat distance, nearest;
+  cv::distanceTransform(rim_mask == 0, distance, nearest, cv::DIST_L2, cv::DIST_MASK_5,
+                        cv::DIST_LABEL_PIXEL);
+  std::vector<int> rim_of_label(rim.size() + 1, -1);
+  for (size_t i = 0; i < rim.size(); ++i)
+    rim_of_label[nearest.at<int>(rim[i])] = static_cast<int>(i);
+  cv::Mat source = cv::Mat::zeros(z.size(), CV_8U);
+  for (int row = 0; row < z.rows; ++row) {
+    for (int col = 0; col < z.cols; ++col) {
+      if (!data.at<std::uint8_t>(row, col)) continue;
+      const int r = rim_of_label[nearest.at<int>(row, col)];
+      if (!front[r] && same_surface(z.at<float>(row, col), z.at<float>(rim[r]), discontinuity)) {
+        source.at<std::uint8_t>(row, col) = 255;
+      }
+    }
+  }
+  return source;
+}
+
+// Before step 3 of fill_depth: every pixel of the window farther than `reach` from the source
+// takes the depth of its nearest source pixel and joins the source, so that the back-end restores
+// a band of `reach` pixels along the source however large the hole is. `z` is replaced by a copy
+// when it changes.
+void extend_source_beyond_reach(cv::Mat& z, cv::Mat& source, int reach) {
+  cv::Mat distance, nearest;
+  cv::distanceTransform(source == 0, distance, nearest, cv::DIST_L2, cv::DIST_MASK_5,
+                        cv::DIST_LABEL_PIXEL);
+  const cv::Mat far = distance > reach;
+  if (cv::countNonZero(far) == 0) return;
+  std::vector<cv::Point> source_pixels;
+  cv::findNonZero(source, source_pixels);
+  std::vector<float> depth_of_label(source_pixels.size() + 1, 0);
+  for (const cv::Point& p : source_pixels) depth_of_label[nearest.at<int>(p)] = z.at<float>(p);
+  z = z.clone();
+  for (int row = 0; row < z.rows; ++row) {
+    for (int col = 0; col < z.cols; ++col) {
+      if (far.at<std::uint8_t>(row, col))
+        z.at<float>(row, col) = depth_of_label[nearest.at<int>(row, col)];
+    }
+  }
+  source |= far;
+}
+
+// Step 3 of fill_depth: depth (metres) at the hole pixels of a window, restored from `source`.
+cv::Mat fill_from_source(const cv::Mat& z, const cv::Mat& hole, const cv::Mat& source,
+                         const Inpainter& inpainter, const DepthFillOptions& options) {
+  // The source in inverse depth, normalised onto [0, 1].
+  cv::Mat inverse;
+  cv::divide(1.0, z, inverse, CV_32F);
+  double lowest = 0, highest = 0;
+  cv::minMaxLoc(inverse, &lowest, &highest, nullptr, nullptr, source);
+  const double scale = highest > lowest ? 1 / (highest - lowest) : 1;
+  RangeImage image;  // only depth and labels, what fit_trend reads
+  image.labels = cv::Mat(z.size(), CV_8U, cv::Scalar(kGapPixel));
+  image.labels.setTo(kHolePixel, hole);
+  image.labels.setTo(kKnownPixel, source);
+  image.depth = cv::Mat::zeros(z.size(), CV_32F);
+  cv::Mat normalised = (inverse - lowest) * scale;
+  normalised.copyTo(image.depth, source);
+
+  // Perspective pixels are no length unit: a sphere (or auto) trend is fitted as a quadric.
+  const Trend trend = fit_trend(image.depth, image.labels, options.trend, options.trend_ring);
+  const cv::Mat trend_image =
+      trend.kind == TrendKind::none ? cv::Mat::zeros(z.size(), CV_32F) : trend.image(z.size());
+  cv::Mat restored;
+  inpainter.inpaint(image.depth - trend_image, image.labels != kKnownPixel, restored);
+  restored += trend_image;
+  cv::Mat filled(z.size(), CV_32F, cv::Scalar(0));
+  for (int row = 0; row < z.rows; ++row) {
+    for (int col = 0; col < z.cols; ++col) {
+      if (!hole.at<std::uint8_t>(row, col)) continue;
+      const double value = std::clamp<double>(restored.at<float>(row, col), -0.5, 1.5);
+      filled.at<float>(row, col) =
+          static_cast<float>(1 / std::max(lowest + value / scale, lowest / 2));
+    }
+  }
+  return filled;
+}
+
+struct HoleOutcome {
+  enum Kind { filled, too_large, at_border, without_support } kind = filled;
+  int pixels = 0;
+  bool at_edge = false;
+};
+
+// Fills hole `label` of `labels` (connectedComponentsWithStats' labels and `stats`) into `out`,
+// the output image (of the depth's type), at the hole's pixels only.
+HoleOutcome fill_hole(const cv::Mat& z, const cv::Mat& data, const cv::Mat& labels,
+                      const cv::Mat& stats, int label, const Inpainter& inpainter,
+                      const DepthFillOptions& options, cv::Mat& out) {
+  const cv::Rect box(stats.at<int>(label, cv::CC_STAT_LEFT), stats.at<int>(label, cv::CC_STAT_TOP),
+                     stats.at<int>(label, cv::CC_STAT_WIDTH),
+                     stats.at<int>(label, cv::CC_STAT_HEIGHT));
+  HoleOutcome outcome;
+  outcome.pixels = stats.at<int>(label, cv::CC_STAT_AREA);
+  if (options.max_hole_pixels > 0 && outcome.pixels > options.max_hole_pixels) {
+    outcome.kind = HoleOutcome::too_large;
+    return outcome;
+  }
+  const bool touches_border =
+      box.x == 0 || box.y == 0 || box.x + box.width == z.cols || box.y + box.height == z.rows;
+  if (touches_border && options.keep_border) {
+    outcome.kind = HoleOutcome::at_border;
+    return outcome;
+  }
+  const int m = options.margin;
+  const cv::Rect window = cv::Rect(box.x - m, box.y - m, box.width + 2 * m, box.height + 2 * m) &
+                          cv::Rect(0, 0, z.cols, z.rows);
+  const cv::Mat hole = labels(window) == label;
+  cv::Mat source =
+      fill_source(z(window), data(window), hole, options.discontinuity, outcome.at_edge);
+  if (source.empty()) {
+    outcome.kind = HoleOutcome::without_support;
+    return outcome;
+  }
+  cv::Mat window_z = z(window);
+  if (options.reach > 0) extend_source_beyond_reach(window_z, source, options.reach);
+  const cv::Mat fill = fill_from_source(window_z, hole, source, inpainter, options);
+  // Pixel by pixel: cv::Mat::copyTo with a mask may store whole vectors, neighbours included,
+  // which would race with the holes around this one.
+  for (int row = 0; row < window.height; ++row) {
+    for (int col = 0; col < window.width; ++col) {
+      if (!hole.at<std::uint8_t>(row, col)) continue;
+      const float metres = fill.at<float>(row, col);
+      const cv::Point p(window.x + col, window.y + row);
+      if (out.type() == CV_16UC1) {  // millimetres, rounded; a fill is never 0 (invalid)
+        out.at<std::uint16_t>(p) =
+            std::max<std::uint16_t>(cv::saturate_cast<std::uint16_t>(1000.0 * metres), 1);
+      } else {
+        out.at<float>(p) = metres;
+      }
+    }
+  }
+  return outcome;
+}
+
+}  // namespace
+
+InpainterOptions depth_inpainting_defaults() {
+  InpainterOptions options;
+  options.foe_start = "telea";
+  options.foe_tolerance = 3e-3;
+  options.foe_iterations = 10;
+  return options;
+}
+
+DepthFillStats fill_depth(cv::InputArray depth_in, cv::InputArray mask_in, cv::OutputArray filled,
+                          const DepthFillOptions& options) {
+  check_depth_type(depth_in.type(), "fill_depth");
+  const cv::Mat depth = depth_in.getMat();
+  cv::Mat to_fill;
+  if (mask_in.empty()) {
+    to_fill = invalid_depth_mask(depth);
+  } else {
+    if (mask_in.type() != CV_8UC1) {
+      throw InvalidInput("fill_depth: mask must be CV_8UC1, not " +
+                         cv::typeToString(mask_in.type()));
+    }
+    if (mask_in.size() != depth.size()) {
+      throw InvalidInput("fill_depth: mask is " + size_text(mask_in.size()) + " but depth is " +
+                         size_text(depth.size()));
+    }
+    to_fill = mask_in.getMat() != 0;
+  }
+  if (!(options.discontinuity > 0) || options.margin < 1 || options.max_hole_pixels < 0 ||
+      options.threads < 1) {
+    throw InvalidInput(
+        "fill_depth: discontinuity must be positive, margin and threads at least 1 and "
+        "max_hole_pixels not negative");
+  }
+  const std::unique_ptr<Inpainter> inpainter =
+      make_inpainter(options.inpainter, options.inpainting);
+  const cv::Mat z = depth_in_metres(depth);
+  const cv::Mat data = (z > 0) & (to_fill == 0);
+
+  cv::Mat labels, stats, centroids;
+  const int components = cv::connectedComponentsWithStats(to_fill, labels, stats, centroids, 8);
+  depth.copyTo(filled);
+  cv::Mat out = filled.getMat();
+  // Holes are independent: each reads the input only and writes its own pixels, so they can run
+  // at once; outcomes (and a failure, the first in hole order) are taken in hole order.
+  std::vector<HoleOutcome> outcomes(std::max(0, components - 1));
+  std::vector<std::exception_ptr> failures(outcomes.size());
+  parallel_for(static_cast<int>(outcomes.size()), options.threads, [&](int i) {
+    try {
+      outcomes[i] = fill_hole(z, data, labels, stats, i + 1, *inpainter, options, out);
+    } catch (...) {
+      failures[i] = std::current_exception();
+    }
+  });
+  DepthFillStats result;
+  result.holes = static_cast<int>(outcomes.size());
+  std::vector<std::uint8_t> filled_label(components, 0);
+  for (size_t i = 0; i < outcomes.size(); ++i) {
+    if (failures[i]) std::rethrow_exception(failures[i]);
+    const HoleOutcome& outcome = outcomes[i];
+    DepthFillStats::Left* left = nullptr;
+    switch (outcome.kind) {
+      case HoleOutcome::filled:
+        ++result.filled;
+        result.filled_pixels += outcome.pixels;
+        result.at_edge += outcome.at_edge;
+        filled_label[i + 1] = 255;
+        break;
+      case HoleOutcome::too_large:
+        left = &result.too_large;
+        break;
+      case HoleOutcome::at_border:
+        left = &result.at_border;
+        break;
+      case HoleOutcome::without_support:
+        left = &result.without_support;
+        break;
+    }
+    if (left) {
+      ++left->holes;
+      left->pixels += outcome.pixels;
+    }
+  }
+  result.filled_mask = cv::Mat::zeros(depth.size(), CV_8U);
+  result.filled_mask.forEach<std::uint8_t>([&](std::uint8_t& value, const int* position) {
+    value = filled_label[labels.at<int>(position[0], position[1])];
+  });
+  return result;
+}
+
+}  // namespace rangefill

@@ -1,0 +1,311 @@
+// The only translation unit that includes PCL's surface and feature modules.
+#include "rangefill/repair/point_cloud.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <numeric>
+#include <set>
+#include <unordered_map>
+
+#include <pcl/console/print.h>
+
+#include <pcl/features/normal_3d.h>
+#include <pcl/point_types.h>
+#include <pcl/search/kdtree.h>
+#include <pcl/surface/gp3.h>
+
+#include "rangefill/core/errors.h"
+#include "rangefill/core/topology.h"
+
+namespace rangefill {
+
+Mesher mesher_from_name(const std::string& name) {
+  if (name == "none") return Mesher::none;
+  if (name == "greedy") return Mesher::greedy;
+  throw InvalidInput("unknown mesher '" + name + "' (known: greedy, none)");
+}
+
+std::string mesher_name(Mesher mesher) {
+  return mesher == Mesher::greedy ? "greedy" : "none";
+}
+
+namespace {
+
+using Cloud = pcl::PointCloud<pcl::PointXYZ>;
+
+// Rounds of orienting and dropping faces in make_oriented_manifold; a few suffice in practice.
+constexpr int kCleaningRounds = 16;
+// Two faces on an edge whose normals make more than 120° are folded onto each other.
+constexpr double kFoldCosine = -0.5;
+
+Cloud::Ptr to_cloud(const std::vector<Vec3>& points) {
+  Cloud::Ptr cloud(new Cloud);
+  cloud->reserve(points.size());
+  for (const Vec3& p : points) {
+    cloud->push_back(pcl::PointXYZ(static_cast<float>(p.x()), static_cast<float>(p.y()),
+                                   static_cast<float>(p.z())));
+  }
+  return cloud;
+}
+
+double mean_spacing(const Cloud::Ptr& cloud, pcl::search::KdTree<pcl::PointXYZ>& tree) {
+  if (cloud->size() < 2) return 0;
+  double sum = 0;
+  std::vector<int> indices;
+  std::vector<float> squared;
+  for (int i = 0; i < static_cast<int>(cloud->size()); ++i) {
+    tree.nearestKSearch(i, 2, indices, squared);
+    // The nearest is the point itself, unless it has a duplicate, which is as near.
+    sum += std::sqrt(static_cast<double>(squared.back()));
+  }
+  return sum / static_cast<double>(cloud->size());
+}
+
+// The cloud's own normals, else PCL's estimate turned away from the centroid.
+std::vector<Vec3> point_normals(const Mesh& cloud, const Cloud::Ptr& xyz,
+                                const pcl::search::KdTree<pcl::PointXYZ>::Ptr& tree,
+                                int neighbours) {
+  if (cloud.has_normals()) return cloud.normals;
+  Vec3 centroid = Vec3::Zero();
+  for (const Vec3& p : cloud.positions) centroid += p;
+  centroid /= static_cast<double>(cloud.vertex_count());
+  pcl::NormalEstimation<pcl::PointXYZ, pcl::Normal> estimation;
+  estimation.setInputCloud(xyz);
+  estimation.setSearchMethod(tree);
+  estimation.setKSearch(neighbours);
+  estimation.setViewPoint(static_cast<float>(centroid.x()), static_cast<float>(centroid.y()),
+                          static_cast<float>(centroid.z()));
+  pcl::PointCloud<pcl::Normal> estimated;
+  estimation.compute(estimated);
+  std::vector<Vec3> normals;
+  normals.reserve(estimated.size());
+  for (const pcl::Normal& n : estimated) {
+    normals.push_back(-Vec3(n.normal_x, n.normal_y, n.normal_z));  // towards the viewpoint
+  }
+  return normals;
+}
+
+std::vector<Triangle> greedy_triangles(const Cloud::Ptr& xyz, const std::vector<Vec3>& normals,
+                                       double spacing, const GreedyMeshingOptions& options) {
+  pcl::PointCloud<pcl::PointNormal>::Ptr oriented(new pcl::PointCloud<pcl::PointNormal>);
+  oriented->reserve(xyz->size());
+  for (size_t i = 0; i < xyz->size(); ++i) {
+    pcl::PointNormal p;
+    p.x = (*xyz)[i].x;
+    p.y = (*xyz)[i].y;
+    p.z = (*xyz)[i].z;
+    const Vec3 n =
+        normals[i].allFinite() && normals[i].norm() > 0 ? normals[i].normalized() : Vec3::UnitZ();
+    p.normal_x = static_cast<float>(n.x());
+    p.normal_y = static_cast<float>(n.y());
+    p.normal_z = static_cast<float>(n.z());
+    oriented->push_back(p);
+  }
+  pcl::search::KdTree<pcl::PointNormal>::Ptr tree(new pcl::search::KdTree<pcl::PointNormal>);
+  tree->setInputCloud(oriented);
+  // The library prints nothing; PCL's triangulation warns on the console unless told not to.
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  pcl::GreedyProjectionTriangulation<pcl::PointNormal> greedy;
+  greedy.setSearchRadius(options.search_radius * spacing);
+  greedy.setMu(options.mu);
+  greedy.setMaximumNearestNeighbors(options.max_neighbours);
+  greedy.setMaximumSurfaceAngle(options.max_surface_angle * M_PI / 180);
+  greedy.setMinimumAngle(options.min_angle * M_PI / 180);
+  greedy.setMaximumAngle(options.max_angle * M_PI / 180);
+  greedy.setNormalConsistency(false);
+  greedy.setInputCloud(oriented);
+  greedy.setSearchMethod(tree);
+  std::vector<pcl::Vertices> polygons;
+  greedy.reconstruct(polygons);
+  std::vector<Triangle> triangles;
+  triangles.reserve(polygons.size());
+  for (const pcl::Vertices& polygon : polygons) {
+    if (polygon.vertices.size() != 3) continue;
+    triangles.push_back({static_cast<int>(polygon.vertices[0]),
+                         static_cast<int>(polygon.vertices[1]),
+                         static_cast<int>(polygon.vertices[2])});
+  }
+  return triangles;
+}
+
+std::uint64_t edge_key(int a, int b) {
+  return (static_cast<std::uint64_t>(std::min(a, b)) << 32) |
+         static_cast<std::uint32_t>(std::max(a, b));
+}
+
+// In order, the triangles that have area, repeat no earlier one and put no third face on an edge.
+std::vector<Triangle> edge_manifold(const std::vector<Vec3>& positions,
+                                    const std::vector<Triangle>& triangles) {
+  std::unordered_map<std::uint64_t, int> faces_on_edge;
+  std::set<Triangle> seen;  // corners sorted
+  std::vector<Triangle> kept;
+  for (const Triangle& t : triangles) {
+    const Vec3 cross = (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]);
+    if (!(cross.squaredNorm() > 0)) continue;
+    Triangle sorted = t;
+    std::sort(sorted.begin(), sorted.end());
+    bool full = false;
+    for (int k = 0; k < 3; ++k) {
+      const auto found = faces_on_edge.find(edge_key(t[k], t[(k + 1) % 3]));
+      full |= found != faces_on_edge.end() && found->second >= 2;
+    }
+    if (full || !seen.insert(sorted).second) continue;
+    for (int k = 0; k < 3; ++k) ++faces_on_edge[edge_key(t[k], t[(k + 1) % 3])];
+    kept.push_back(t);
+  }
+  return kept;
+}
+
+// Orients each edge-connected piece consistently (breadth first from its first face), then turns
+// it so that its face normals agree with the point normals on the whole.
+void orient(const std::vector<Vec3>& positions, const std::vector<Vec3>& normals,
+            std::vector<Triangle>& triangles) {
+  const Mesh mesh = make_mesh(positions, triangles);
+  const MeshTopology topology = build_topology(mesh);
+  auto has_directed = [&](const Triangle& t, int a, int b) {
+    for (int k = 0; k < 3; ++k) {
+      if (t[k] == a && t[(k + 1) % 3] == b) return true;
+    }
+    return false;
+  };
+  std::vector<char> visited(triangles.size(), 0);
+  for (int start = 0; start < static_cast<int>(triangles.size()); ++start) {
+    if (visited[start]) continue;
+    std::vector<int> piece{start};
+    visited[start] = 1;
+    for (size_t i = 0; i < piece.size(); ++i) {
+      const int f = piece[i];
+      for (int k = 0; k < 3; ++k) {
+        // Half-edge 3f + k is of f as it was; a → b is that edge the way f runs now.
+        const Edge& edge = topology.edges[topology.halfedge_edge[3 * f + k]];
+        const bool along = has_directed(triangles[f], edge.v0, edge.v1);
+        const int a = along ? edge.v0 : edge.v1, b = along ? edge.v1 : edge.v0;
+        for (int j = edge.first; j < edge.first + edge.count; ++j) {
+          const int g = halfedge_face(topology.edge_halfedges[j]);
+          if (visited[g]) continue;
+          visited[g] = 1;
+          if (has_directed(triangles[g], a, b)) std::swap(triangles[g][1], triangles[g][2]);
+          piece.push_back(g);
+        }
+      }
+    }
+    double agreement = 0;
+    for (int f : piece) {
+      const Triangle& t = triangles[f];
+      const Vec3 cross =
+          (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]);
+      for (int v : t) {
+        if (normals[v].allFinite()) agreement += cross.dot(normals[v]);
+      }
+    }
+    if (agreement < 0) {
+      for (int f : piece) std::swap(triangles[f][1], triangles[f][2]);
+    }
+  }
+}
+
+// The faces around pinched vertex v (whose faces form several fans) that are not in its largest
+// fan (the first of the largest).
+std::vector<int> smaller_fans(const Mesh& mesh, const MeshTopology& topology, int v) {
+  std::vector<int> faces(topology.vertex_faces.begin() + topology.faces_of_vertex_begin(v),
+                         topology.vertex_faces.begin() + topology.faces_of_vertex_end(v));
+  std::vector<int> fan(faces.size());
+  std::iota(fan.begin(), fan.end(), 0);
+  std::function<int(int)> root = [&](int i) { return fan[i] == i ? i : fan[i] = root(fan[i]); };
+  std::unordered_map<int, int> first_with;  // other corner w of an edge (v, w) -> a face index
+  for (size_t i = 0; i < faces.size(); ++i) {
+    for (int w : mesh.triangles[faces[i]]) {
+      if (w == v) continue;
+      const auto [found, inserted] = first_with.emplace(w, static_cast<int>(i));
+      if (!inserted) fan[root(static_cast<int>(i))] = root(found->second);
+    }
+  }
+  std::vector<int> size(faces.size(), 0);
+  for (size_t i = 0; i < faces.size(); ++i) ++size[root(static_cast<int>(i))];
+  const int largest = static_cast<int>(std::max_element(size.begin(), size.end()) - size.begin());
+  std::vector<int> others;
+  for (size_t i = 0; i < faces.size(); ++i) {
+    if (root(static_cast<int>(i)) != largest) others.push_back(faces[i]);
+  }
+  return others;
+}
+
+// Orients the triangles and drops, until none is left, those that keep them from being an oriented
+// manifold: both faces of an edge they traverse the same way (a twisted band) or fold across (more
+// than 120° between their normals), faces folded over their neighbours (facing against the normals
+// of their corners), and the smaller fans of pinched vertices.
+void make_oriented_manifold(const std::vector<Vec3>& positions, const std::vector<Vec3>& normals,
+                            std::vector<Triangle>& triangles) {
+  for (int round = 0; round < kCleaningRounds; ++round) {
+    orient(positions, normals, triangles);
+    const Mesh mesh = make_mesh(positions, triangles);
+    const MeshTopology topology = build_topology(mesh);
+    std::vector<char> drop(triangles.size(), 0);
+    for (const Edge& edge : topology.edges) {
+      if (edge.count != 2) continue;
+      const int h0 = topology.edge_halfedges[edge.first];
+      const int h1 = topology.edge_halfedges[edge.first + 1];
+      const int f0 = halfedge_face(h0), f1 = halfedge_face(h1);
+      const bool twisted = topology.halfedge_source(mesh, h0) == topology.halfedge_source(mesh, h1);
+      const bool folded = triangle_cross(mesh, f0).normalized().dot(
+                              triangle_cross(mesh, f1).normalized()) < kFoldCosine;
+      if (twisted || folded) drop[f0] = drop[f1] = 1;
+    }
+    const std::vector<Vec3> corner_normals = vertex_normals_from_faces(mesh);
+    for (int f = 0; f < mesh.face_count(); ++f) {
+      Vec3 around = Vec3::Zero();
+      for (int v : mesh.triangles[f]) around += corner_normals[v];
+      if (!(triangle_cross(mesh, f).dot(around) > 0)) drop[f] = 1;
+    }
+    for (int v : topology.nonmanifold_vertices) {
+      for (int f : smaller_fans(mesh, topology, v)) drop[f] = 1;
+    }
+    if (std::count(drop.begin(), drop.end(), 1) == 0) return;
+    std::vector<Triangle> kept;
+    for (size_t f = 0; f < triangles.size(); ++f) {
+      if (!drop[f]) kept.push_back(triangles[f]);
+    }
+    triangles = std::move(kept);
+  }
+}
+
+}  // namespace
+
+double mean_point_spacing(const std::vector<Vec3>& points) {
+  if (points.size() < 2) return 0;
+  const Cloud::Ptr cloud = to_cloud(points);
+  pcl::search::KdTree<pcl::PointXYZ> tree;
+  tree.setInputCloud(cloud);
+  return mean_spacing(cloud, tree);
+}
+
+Mesh mesh_point_cloud(const Mesh& cloud, const GreedyMeshingOptions& options) {
+  if (!cloud.triangles.empty()) throw InvalidInput("meshing: the point cloud already has faces");
+  if (cloud.vertex_count() < 3) throw InvalidInput("meshing: fewer than three points");
+  if (!(options.search_radius > 0 && options.mu > 0 && options.max_neighbours >= 3 &&
+        options.max_surface_angle > 0 && options.min_angle >= 0 &&
+        options.max_angle > options.min_angle && options.normal_neighbours >= 3)) {
+    throw InvalidInput("meshing: greedy projection options out of range");
+  }
+  const Cloud::Ptr xyz = to_cloud(cloud.positions);
+  const pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
+  tree->setInputCloud(xyz);
+  const double spacing = mean_spacing(xyz, *tree);
+  if (!(spacing > 0)) throw ProcessingError("meshing: every point is at the same place");
+  const std::vector<Vec3> normals = point_normals(cloud, xyz, tree, options.normal_neighbours);
+
+  Mesh mesh = cloud;
+  mesh.triangles = edge_manifold(cloud.positions, greedy_triangles(xyz, normals, spacing, options));
+  if (mesh.triangles.empty()) throw ProcessingError("meshing: the greedy projection made no face");
+  make_oriented_manifold(cloud.positions, normals, mesh.triangles);
+  if (mesh.triangles.empty()) throw ProcessingError("meshing: no face survived the clean-up");
+  mesh.face_hole.assign(mesh.triangles.size(), kOriginal);
+  for (ExtraProperty& property : mesh.face_properties) {
+    property.values.assign(mesh.triangles.size(), 0);  // declared by the file for no face
+  }
+  return mesh;
+}
+
+}  // namespace rangefill

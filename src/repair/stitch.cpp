@@ -1,0 +1,206 @@
+// The only translation unit that includes CGAL (constrained Delaunay triangulation).
+#include "rangefill/repair/stitch.h"
+
+#include <algorithm>
+#include <deque>
+#include <limits>
+#include <map>
+#include <set>
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include "rangefill/core/errors.h"
+#include "rangefill/core/geometry2d.h"
+
+namespace rangefill {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<int, Kernel>;
+using FaceInfoBase = CGAL::Triangulation_face_base_with_info_2<int, Kernel>;
+using FaceBase = CGAL::Constrained_triangulation_face_base_2<Kernel, FaceInfoBase>;
+using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
+using Cdt =
+    CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::No_constraint_intersection_tag>;
+
+// Nesting depth of every face: 0 outside all constraints, +1 across each constrained edge.
+void mark_nesting(Cdt& cdt) {
+  for (Cdt::Face_handle face : cdt.all_face_handles()) face->info() = -1;
+  std::deque<Cdt::Face_handle> next_level{cdt.infinite_face()};
+  for (int level = 0; !next_level.empty(); ++level) {
+    std::deque<Cdt::Face_handle> queue;
+    queue.swap(next_level);
+    while (!queue.empty()) {
+      const Cdt::Face_handle face = queue.front();
+      queue.pop_front();
+      if (face->info() != -1) continue;
+      face->info() = level;
+      for (int i = 0; i < 3; ++i) {
+        const Cdt::Face_handle neighbour = face->neighbor(i);
+        if (neighbour->info() != -1) continue;
+        (cdt.is_constrained(Cdt::Edge(face, i)) ? next_level : queue).push_back(neighbour);
+      }
+    }
+  }
+}
+
+bool mesh_has_edge(const Mesh& mesh, const MeshTopology& topology, int a, int b) {
+  return find_halfedge(mesh, topology, a, b) >= 0 || find_halfedge(mesh, topology, b, a) >= 0;
+}
+
+[[noreturn]] void refuse(const BoundaryLoop& hole, const std::string& why) {
+  throw ProcessingError("hole " + std::to_string(hole.id) + ": stitching failed: " + why);
+}
+
+}  // namespace
+
+void validate_fill(const Mesh& mesh, const MeshTopology& topology, const BoundaryLoop& hole,
+                   const Fill& fill, const Frame* frame) {
+  const int boundary_size = static_cast<int>(fill.boundary.size());
+  auto position = [&](int id) -> const Vec3& {
+    return id < boundary_size ? mesh.positions[fill.boundary[id]] : fill.points[id - boundary_size];
+  };
+  std::map<std::pair<int, int>, int> directed;
+  for (const Triangle& t : fill.triangles) {
+    const Vec3 cross = (position(t[1]) - position(t[0])).cross(position(t[2]) - position(t[0]));
+    if (!(cross.norm() > 0) || (frame && !(cross.dot(frame->normal()) > 0))) {
+      refuse(hole, "a triangle is degenerate or flipped");
+    }
+    for (int k = 0; k < 3; ++k) {
+      if (++directed[{t[k], t[(k + 1) % 3]}] > 1)
+        refuse(hole, "an edge is used twice in one direction");
+    }
+  }
+  for (const auto& [edge, count] : directed) {
+    const auto [a, b] = edge;
+    const bool reverse_present = directed.count({b, a}) > 0;
+    const bool along_loop = a < boundary_size && b < boundary_size &&
+                            (b + 1) % boundary_size == a;  // the loop runs b → a
+    if (along_loop == reverse_present) {
+      refuse(hole,
+             along_loop ? "a boundary edge is used twice" : "the fill has a border of its own");
+    }
+    if (a < boundary_size && b < boundary_size && !along_loop && (a + 1) % boundary_size != b &&
+        a < b && mesh_has_edge(mesh, topology, fill.boundary[a], fill.boundary[b])) {
+      refuse(hole, "a chord duplicates an existing mesh edge");
+    }
+  }
+  for (int i = 0; i < boundary_size; ++i) {
+    if (!directed.count({(i + 1) % boundary_size, i}))
+      refuse(hole, "a boundary edge is not covered");
+  }
+}
+
+std::vector<Triangle> triangulate_grid(const Patch& patch) {
+  std::vector<Triangle> triangles;
+  const cv::Mat& index = patch.index;
+  for (int row = 0; row + 1 < index.rows; ++row) {
+    for (int col = 0; col + 1 < index.cols; ++col) {
+      const int top_left = index.at<int>(row, col), top_right = index.at<int>(row, col + 1);
+      const int bottom_left = index.at<int>(row + 1, col),
+                bottom_right = index.at<int>(row + 1, col + 1);
+      // Eq. 15 with the diagonal bottom-left – top-right; counter-clockwise with y up (rows down).
+      const bool upper = top_left >= 0 && top_right >= 0 && bottom_left >= 0;
+      const bool lower = top_right >= 0 && bottom_left >= 0 && bottom_right >= 0;
+      if (upper) triangles.push_back({top_left, bottom_left, top_right});
+      if (lower) triangles.push_back({top_right, bottom_left, bottom_right});
+      if (upper || lower) continue;
+      // Three pixels present without that diagonal: split by the other one.
+      if (top_left >= 0 && bottom_left >= 0 && bottom_right >= 0) {
+        triangles.push_back({top_left, bottom_left, bottom_right});
+      } else if (top_left >= 0 && top_right >= 0 && bottom_right >= 0) {
+        triangles.push_back({top_left, bottom_right, top_right});
+      }
+    }
+  }
+  return triangles;
+}
+
+Fill stitch(const Mesh& mesh, const MeshTopology& topology, const BoundaryLoop& hole,
+            const Frame& frame, const Patch& patch, const std::vector<Triangle>& grid) {
+  const std::vector<Vec2> polygon = project_loop(mesh, hole, frame);
+  const int boundary_size = static_cast<int>(polygon.size());
+  std::vector<Vec2> planar;
+  for (const Vec3& p : patch.points) planar.push_back(frame.to_local(p).head<2>());
+
+  // T1 without the triangles that reach the boundary: they would cross its constraints.
+  std::vector<Triangle> kept;
+  for (const Triangle& t : grid) {
+    bool crosses = false;
+    for (int k = 0; k < 3 && !crosses; ++k) {
+      const Vec2 &a = planar[t[k]], &b = planar[t[(k + 1) % 3]];
+      for (int i = 0; i < boundary_size && !crosses; ++i) {
+        crosses = segments_touch(a, b, polygon[i], polygon[(i + 1) % boundary_size]);
+      }
+    }
+    if (!crosses) kept.push_back(t);
+  }
+
+  Cdt cdt;
+  std::vector<Cdt::Vertex_handle> handles;
+  auto insert = [&](const Vec2& p, int id) {
+    const size_t before = cdt.number_of_vertices();
+    Cdt::Vertex_handle handle = cdt.insert(Cdt::Point(p.x(), p.y()));
+    if (cdt.number_of_vertices() == before) refuse(hole, "two points project onto one");
+    handle->info() = id;
+    handles.push_back(handle);
+  };
+  for (int i = 0; i < boundary_size; ++i) insert(polygon[i], i);
+  for (size_t k = 0; k < planar.size(); ++k) insert(planar[k], boundary_size + static_cast<int>(k));
+
+  std::map<std::pair<int, int>, int> grid_edges;
+  for (const Triangle& t : kept) {
+    for (int k = 0; k < 3; ++k) ++grid_edges[{t[k], t[(k + 1) % 3]}];
+  }
+  try {
+    for (int i = 0; i < boundary_size; ++i) {
+      cdt.insert_constraint(handles[i], handles[(i + 1) % boundary_size]);
+    }
+    for (const auto& [edge, count] : grid_edges) {
+      if (!grid_edges.count({edge.second, edge.first})) {
+        cdt.insert_constraint(handles[boundary_size + edge.first],
+                              handles[boundary_size + edge.second]);
+      }
+    }
+  } catch (const Cdt::Intersection_of_constraints_exception&) {
+    refuse(hole, "the grid border crosses the hole boundary");
+  }
+  mark_nesting(cdt);
+
+  // T1 ∪ T2 over fill-vertex ids (points not yet compacted).
+  std::vector<Triangle> triangles;
+  for (const Triangle& t : kept) {
+    triangles.push_back({boundary_size + t[0], boundary_size + t[1], boundary_size + t[2]});
+  }
+  for (Cdt::Face_handle face : cdt.finite_face_handles()) {
+    if (face->info() % 2 == 1) {
+      triangles.push_back(
+          {face->vertex(0)->info(), face->vertex(1)->info(), face->vertex(2)->info()});
+    }
+  }
+
+  Fill fill;
+  fill.boundary = hole.vertices;
+  std::vector<int> new_id(patch.points.size(), -1);
+  for (Triangle& t : triangles) {
+    for (int& id : t) {
+      if (id < boundary_size) continue;
+      int& mapped = new_id[id - boundary_size];
+      if (mapped < 0) {
+        mapped = boundary_size + static_cast<int>(fill.points.size());
+        fill.points.push_back(patch.points[id - boundary_size]);
+        if (!patch.colors.empty()) fill.colors.push_back(patch.colors[id - boundary_size]);
+      }
+      id = mapped;
+    }
+  }
+  fill.triangles = std::move(triangles);
+  validate_fill(mesh, topology, hole, fill, &frame);
+  return fill;
+}
+
+}  // namespace rangefill
