@@ -51,7 +51,7 @@ class Front {
         static_cast<size_t>(10 * disk_area / (0.43 * edge_length_ * edge_length_)) + 100;
   }
 
-  Fill run() {
+  FillOutcome run() {
     double depth_scale = 1, phi = options_.phi;
     int stalls = 0, stagnant = 0;
     double shortest = front_length();
@@ -59,6 +59,7 @@ class Front {
       // All three steps run, in this order (the operands of a | b | c are not sequenced).
       bool progress = make_convex(phi);
       progress |= add_vertices(depth_scale);
+      if (!failure_.empty()) return Refused{Refusal::front_stuck, failure_};
       progress |= make_convex(phi);
       // A front that does not get shorter extrudes the surface (round a thin tube's end, say)
       // instead of closing it; one that stalls cannot go on. Either is closed at once.
@@ -74,7 +75,10 @@ class Front {
       depth_scale *= options_.shrink;
       phi *= options_.shrink;
     }
-    close_front();
+    if (!close_front()) {
+      return Refused{Refusal::front_stuck,
+                     "the last " + std::to_string(size_) + " front vertices could not be closed"};
+    }
     Fill fill;
     fill.boundary = hole_.vertices;
     fill.points.assign(positions_.begin() + hole_.vertices.size(), positions_.end());
@@ -83,10 +87,6 @@ class Front {
   }
 
  private:
-  [[noreturn]] void fail(const std::string& why) const {
-    throw ProcessingError("hole " + std::to_string(hole_.id) + ": advancing front: " + why);
-  }
-
   int first_on_front() const {
     for (int v = 0; v < static_cast<int>(on_front_.size()); ++v) {
       if (on_front_[v]) return v;
@@ -249,8 +249,9 @@ class Front {
       add_triangle({b, a, p});
       progress = true;
       if (triangles_.size() > max_triangles_) {
-        fail("more than " + std::to_string(max_triangles_) +
-             " triangles (the front does not close)");
+        failure_ =
+            "more than " + std::to_string(max_triangles_) + " triangles (the front does not close)";
+        return false;
       }
     }
     // The new points join the samples: the surface grows with the fill, curvature carries inwards.
@@ -260,8 +261,9 @@ class Front {
   }
 
   // The rest of the front in one go: ear clipping in the plane of its Newell normal, or else the
-  // least-area triangulation; the first whose triangles are new edges and free in space.
-  void close_front() {
+  // least-area triangulation; the first whose triangles are new edges and free in space. False
+  // when neither closes it.
+  bool close_front() {
     std::vector<int> ring;
     for (int v = first_on_front(), k = 0; k < size_; v = next_[v], ++k) ring.push_back(v);
     std::vector<Vec3> polygon;
@@ -292,13 +294,11 @@ class Front {
         if (!valid) break;
         add_triangle(triangle);
       }
-      if (valid) return;
+      if (valid) return true;
       triangles_.resize(kept);
       edges_ = edges;
     }
-    if (!clip_ears_in_space()) {
-      fail("the last " + std::to_string(size_) + " front vertices could not be closed");
-    }
+    return clip_ears_in_space();
   }
 
   // Greedy ear clipping by the smallest angle in space, each ear a new edge and free in space:
@@ -366,16 +366,18 @@ class Front {
   std::vector<Triangle> triangles_;
   std::set<std::pair<int, int>> edges_;  // undirected, fill-vertex ids: the fill's and the mesh's
   int size_ = 0;
+  std::string failure_;       // why the front stopped without closing
   double edge_length_ = 0;    // a: the mean boundary edge length
   size_t max_triangles_ = 0;  // ten times what a flat disk of the same perimeter would take
 };
 
 }  // namespace
 
-Fill fill_by_front(const Mesh& mesh, const MeshTopology& topology, const IntersectionIndex& faces,
-                   const BoundaryLoop& hole, MlsSurface surface, const FrontOptions& options) {
+FillOutcome fill_by_front(const Mesh& mesh, const MeshTopology& topology,
+                          const IntersectionIndex& faces, const BoundaryLoop& hole,
+                          MlsSurface surface, const FrontOptions& options) {
   if (hole.vertices.size() < 3) {
-    throw ProcessingError("hole " + std::to_string(hole.id) + ": fewer than 3 boundary vertices");
+    throw InvalidInput("hole " + std::to_string(hole.id) + ": fewer than 3 boundary vertices");
   }
   return Front(mesh, topology, faces, hole, std::move(surface), options).run();
 }

@@ -1,4 +1,4 @@
-// The only translation unit that includes CGAL (constrained Delaunay triangulation).
+// Stitching with CGAL's constrained Delaunay triangulation (2D).
 #include "rangefill/repair/stitch.h"
 
 #include <algorithm>
@@ -52,14 +52,10 @@ bool mesh_has_edge(const Mesh& mesh, const MeshTopology& topology, int a, int b)
   return find_halfedge(mesh, topology, a, b) >= 0 || find_halfedge(mesh, topology, b, a) >= 0;
 }
 
-[[noreturn]] void refuse(const BoundaryLoop& hole, const std::string& why) {
-  throw ProcessingError("hole " + std::to_string(hole.id) + ": stitching failed: " + why);
-}
-
 }  // namespace
 
-void validate_fill(const Mesh& mesh, const MeshTopology& topology, const BoundaryLoop& hole,
-                   const Fill& fill, const Frame* frame) {
+std::optional<std::string> fill_defect(const Mesh& mesh, const MeshTopology& topology,
+                                       const Fill& fill, const Frame* frame) {
   const int boundary_size = static_cast<int>(fill.boundary.size());
   auto position = [&](int id) -> const Vec3& {
     return id < boundary_size ? mesh.positions[fill.boundary[id]] : fill.points[id - boundary_size];
@@ -68,11 +64,10 @@ void validate_fill(const Mesh& mesh, const MeshTopology& topology, const Boundar
   for (const Triangle& t : fill.triangles) {
     const Vec3 cross = (position(t[1]) - position(t[0])).cross(position(t[2]) - position(t[0]));
     if (!(cross.norm() > 0) || (frame && !(cross.dot(frame->normal()) > 0))) {
-      refuse(hole, "a triangle is degenerate or flipped");
+      return "a triangle is degenerate or flipped";
     }
     for (int k = 0; k < 3; ++k) {
-      if (++directed[{t[k], t[(k + 1) % 3]}] > 1)
-        refuse(hole, "an edge is used twice in one direction");
+      if (++directed[{t[k], t[(k + 1) % 3]}] > 1) return "an edge is used twice in one direction";
     }
   }
   for (const auto& [edge, count] : directed) {
@@ -81,18 +76,17 @@ void validate_fill(const Mesh& mesh, const MeshTopology& topology, const Boundar
     const bool along_loop = a < boundary_size && b < boundary_size &&
                             (b + 1) % boundary_size == a;  // the loop runs b → a
     if (along_loop == reverse_present) {
-      refuse(hole,
-             along_loop ? "a boundary edge is used twice" : "the fill has a border of its own");
+      return along_loop ? "a boundary edge is used twice" : "the fill has a border of its own";
     }
     if (a < boundary_size && b < boundary_size && !along_loop && (a + 1) % boundary_size != b &&
         a < b && mesh_has_edge(mesh, topology, fill.boundary[a], fill.boundary[b])) {
-      refuse(hole, "a chord duplicates an existing mesh edge");
+      return "a chord duplicates an existing mesh edge";
     }
   }
   for (int i = 0; i < boundary_size; ++i) {
-    if (!directed.count({(i + 1) % boundary_size, i}))
-      refuse(hole, "a boundary edge is not covered");
+    if (!directed.count({(i + 1) % boundary_size, i})) return "a boundary edge is not covered";
   }
+  return std::nullopt;
 }
 
 std::vector<Triangle> triangulate_grid(const Patch& patch) {
@@ -120,8 +114,8 @@ std::vector<Triangle> triangulate_grid(const Patch& patch) {
   return triangles;
 }
 
-Fill stitch(const Mesh& mesh, const MeshTopology& topology, const BoundaryLoop& hole,
-            const Frame& frame, const Patch& patch, const std::vector<Triangle>& grid) {
+FillOutcome stitch(const Mesh& mesh, const MeshTopology& topology, const BoundaryLoop& hole,
+                   const Frame& frame, const Patch& patch, const std::vector<Triangle>& grid) {
   const std::vector<Vec2> polygon = project_loop(mesh, hole, frame);
   const int boundary_size = static_cast<int>(polygon.size());
   std::vector<Vec2> planar;
@@ -142,15 +136,21 @@ Fill stitch(const Mesh& mesh, const MeshTopology& topology, const BoundaryLoop& 
 
   Cdt cdt;
   std::vector<Cdt::Vertex_handle> handles;
+  // False when the point falls on one inserted before.
   auto insert = [&](const Vec2& p, int id) {
     const size_t before = cdt.number_of_vertices();
     Cdt::Vertex_handle handle = cdt.insert(Cdt::Point(p.x(), p.y()));
-    if (cdt.number_of_vertices() == before) refuse(hole, "two points project onto one");
+    if (cdt.number_of_vertices() == before) return false;
     handle->info() = id;
     handles.push_back(handle);
+    return true;
   };
-  for (int i = 0; i < boundary_size; ++i) insert(polygon[i], i);
-  for (size_t k = 0; k < planar.size(); ++k) insert(planar[k], boundary_size + static_cast<int>(k));
+  bool distinct = true;
+  for (int i = 0; i < boundary_size && distinct; ++i) distinct = insert(polygon[i], i);
+  for (size_t k = 0; k < planar.size() && distinct; ++k) {
+    distinct = insert(planar[k], boundary_size + static_cast<int>(k));
+  }
+  if (!distinct) return Refused{Refusal::not_manifold, "stitching: two points project onto one"};
 
   std::map<std::pair<int, int>, int> grid_edges;
   for (const Triangle& t : kept) {
@@ -167,7 +167,7 @@ Fill stitch(const Mesh& mesh, const MeshTopology& topology, const BoundaryLoop& 
       }
     }
   } catch (const Cdt::Intersection_of_constraints_exception&) {
-    refuse(hole, "the grid border crosses the hole boundary");
+    return Refused{Refusal::not_manifold, "stitching: the grid border crosses the hole boundary"};
   }
   mark_nesting(cdt);
 
@@ -199,7 +199,9 @@ Fill stitch(const Mesh& mesh, const MeshTopology& topology, const BoundaryLoop& 
     }
   }
   fill.triangles = std::move(triangles);
-  validate_fill(mesh, topology, hole, fill, &frame);
+  if (const auto defect = fill_defect(mesh, topology, fill, &frame)) {
+    return Refused{Refusal::not_manifold, "stitching: " + *defect};
+  }
   return fill;
 }
 

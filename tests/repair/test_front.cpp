@@ -2,6 +2,7 @@
 // filled by the front, a hole round a thin tube that no projection plane can unfold, and the
 // last pass's patch of a whole loop.
 #include "rangefill/repair/front.h"
+#include "rangefill/repair/stitch.h"
 
 #include <cmath>
 #include <cstring>
@@ -29,10 +30,12 @@ TEST(FillByFront, FlatHoleIsCoveredExactly) {
     for (int v : t) samples.push_back(sheet.positions[v]);
   }
   const IntersectionIndex faces(sheet);
-  const Fill fill =
+  const FillOutcome outcome =
       fill_by_front(sheet, topology, faces, hole,
                     MlsSurface(samples, std::vector<Vec3>(samples.size(), Vec3::UnitZ())));
-  EXPECT_NO_THROW(validate_fill(sheet, topology, hole, fill));
+  ASSERT_TRUE(std::holds_alternative<Fill>(outcome));
+  const Fill& fill = std::get<Fill>(outcome);
+  EXPECT_FALSE(fill_defect(sheet, topology, fill));
   EXPECT_EQ(fill.boundary, hole.vertices);
   ASSERT_GT(fill.points.size(), 10u);
   for (const Vec3& p : fill.points) {
@@ -54,11 +57,10 @@ TEST(FillByFront, FlatHoleIsCoveredExactly) {
 
 // The one hole of `cut` filled by `method`: nothing left open, the input kept bit for bit, the
 // result a closed manifold.
-void expect_one_hole_closed_by(const Mesh& cut, const RepairResult& result,
-                               const std::string& method) {
+void expect_one_hole_closed_by(const Mesh& cut, const RepairResult& result, Strategy strategy) {
   ASSERT_EQ(result.holes.size(), 1u);
   EXPECT_TRUE(result.holes[0].filled) << result.holes[0].failure;
-  EXPECT_EQ(result.holes[0].method, method);
+  EXPECT_EQ(result.holes[0].strategy, strategy);
   EXPECT_EQ(result.open_count(OpenReason::failed), 0);
   testing::expect_input_preserved(cut, result.mesh);
   EXPECT_TRUE(check_manifold(result.mesh).closed_manifold());
@@ -73,9 +75,9 @@ TEST(FrontFiller, ClosesASphereCapOnTheSphere) {
       sphere, [](const Vec3& p) { return p.z() > std::cos(40 * M_PI / 180); });
   const double mean_edge = mean_edge_length(cut);
   RepairOptions options;
-  options.filler = Filler::front;
+  options.strategies = strategy_chain(Filler::front, kDefaultFallbacks);
   const RepairResult result = repair(cut, options);
-  expect_one_hole_closed_by(cut, result, "front");
+  expect_one_hole_closed_by(cut, result, Strategy::front);
   ASSERT_GT(result.mesh.vertex_count(), cut.vertex_count() + 100);
   for (int v = cut.vertex_count(); v < result.mesh.vertex_count(); ++v) {
     EXPECT_LT(std::abs(result.mesh.positions[v].norm() - 1), 0.05 * mean_edge) << "vertex " << v;
@@ -133,19 +135,18 @@ TEST(FrontFiller, ClosesAHoleWrappedRoundATube) {
   const double mean_edge = mean_edge_length(cut);
 
   RepairOptions planes_only;
-  planes_only.fallback_front = false;
-  planes_only.fallback_least_area = false;
+  planes_only.strategies = strategy_chain(Filler::plane, "none");
   const RepairResult parts = repair(cut, planes_only);
   ASSERT_FALSE(parts.holes.empty());
-  EXPECT_EQ(parts.holes[0].method, "plane, in part");
+  EXPECT_EQ(parts.holes[0].strategy, Strategy::plane_in_part);
 
   const RepairResult result = repair(cut);
   ASSERT_FALSE(result.holes.empty());
   for (const HoleReport& report : result.holes) {
     EXPECT_TRUE(report.filled) << report.failure;
-    EXPECT_NE(report.method, "plane");
+    EXPECT_NE(report.strategy, Strategy::plane);
   }
-  EXPECT_EQ(result.holes[0].method, "front");
+  EXPECT_EQ(result.holes[0].strategy, Strategy::front);
   EXPECT_EQ(result.open_count(OpenReason::failed), 0);
   testing::expect_input_preserved(cut, result.mesh);
   EXPECT_TRUE(check_manifold(result.mesh).closed_manifold());
@@ -168,16 +169,15 @@ TEST(FrontFiller, LastPassPatchesTheWholeLoopRatherThanAPart) {
   });
   RepairOptions one_pass;
   one_pass.passes = 1;
-  one_pass.fallback_front = false;
-  one_pass.fallback_least_area = false;
+  one_pass.strategies = strategy_chain(Filler::plane, "none");
   const RepairResult part = repair(cut, one_pass);
   ASSERT_EQ(part.holes.size(), 1u);
-  EXPECT_EQ(part.holes[0].method, "plane, in part");
+  EXPECT_EQ(part.holes[0].strategy, Strategy::plane_in_part);
   EXPECT_EQ(part.open_count(OpenReason::failed), 1);
 
-  one_pass.fallback_least_area = true;
+  one_pass.strategies = strategy_chain(Filler::plane, "least-area");
   const RepairResult whole = repair(cut, one_pass);
-  expect_one_hole_closed_by(cut, whole, "Liepa");
+  expect_one_hole_closed_by(cut, whole, Strategy::liepa);
   EXPECT_EQ(count_self_intersections(whole.mesh, faces_of_hole(whole.mesh, kAnyHole)), 0);
 }
 

@@ -47,7 +47,7 @@ TEST_P(EveryBackend, TiltedPlaneComesBackOnThePlane) {
   const RepairResult result = repair(sheet.mesh, options);
   ASSERT_EQ(result.holes.size(), 1u);
   ASSERT_TRUE(result.holes[0].filled) << result.holes[0].failure;
-  EXPECT_EQ(result.holes[0].method, "plane");
+  EXPECT_EQ(result.holes[0].strategy, Strategy::plane);
   EXPECT_EQ(result.open_count(OpenReason::failed), 0);
   testing::expect_input_preserved(sheet.mesh, result.mesh);
 
@@ -82,7 +82,7 @@ TEST(Pipeline, HarmonicSaddleComesBackWithNavierStokes) {
     options.holes = inner_loops(saddle);
     const RepairResult result = repair(saddle, options);
     ASSERT_TRUE(result.holes.at(0).filled) << result.holes[0].failure;
-    EXPECT_EQ(result.holes[0].method, "plane");
+    EXPECT_EQ(result.holes[0].strategy, Strategy::plane);
     double worst = 0;
     for (const Vec3& p : generated_vertices(result.mesh)) {
       worst = std::max(worst, std::abs(p.z() - (p.x() * p.x() - p.y() * p.y()) / 2));
@@ -120,7 +120,7 @@ TEST_P(SphereCap, FillStaysBetweenCuttingPlaneAndSphere) {
   const RepairResult result = repair(capless, options);
   ASSERT_EQ(result.holes.size(), 1u);
   ASSERT_TRUE(result.holes[0].filled) << result.holes[0].failure;
-  EXPECT_EQ(result.holes[0].method, "plane");  // the numbers are the back-end's
+  EXPECT_EQ(result.holes[0].strategy, Strategy::plane);  // the numbers are the back-end's
   EXPECT_EQ(result.holes[0].trend, TrendKind::sphere);
   testing::expect_input_preserved(capless, result.mesh);
   EXPECT_TRUE(check_manifold(result.mesh).closed_manifold());
@@ -194,7 +194,7 @@ TEST(Pipeline, MlsBringsSphereCapsBack) {
     options.inpainter = "mls";
     const RepairResult result = repair(capless, options);
     ASSERT_TRUE(result.holes.at(0).filled) << result.holes[0].failure;
-    EXPECT_EQ(result.holes[0].method, "plane");
+    EXPECT_EQ(result.holes[0].strategy, Strategy::plane);
     double worst = 0;
     for (const Vec3& p : generated_vertices(result.mesh))
       worst = std::max(worst, std::abs(p.norm() - 1));
@@ -231,7 +231,7 @@ TEST(Pipeline, ColourGradientIsContinuedAcrossTheHole) {
     RepairOptions options;
     options.inpainter = c.inpainter;
     options.trend = c.trend;
-    options.filler = c.filler;
+    options.strategies = strategy_chain(c.filler, kDefaultFallbacks);
     options.holes = {sheet.hole.id};
     const RepairResult result = repair(sheet.mesh, options);
     ASSERT_TRUE(result.holes.at(0).filled) << result.holes[0].failure;
@@ -323,8 +323,7 @@ HardOutcome repair_hard_case(const Mesh& truth, const Mesh& holed, const RepairO
 // The paper's pipeline alone: what is not filled on planes is not filled.
 RepairOptions planes_only() {
   RepairOptions options;
-  options.fallback_front = false;
-  options.fallback_least_area = false;
+  options.strategies = strategy_chain(Filler::plane, "none");
   return options;
 }
 
@@ -335,11 +334,12 @@ void expect_closed_by_front_and_in_parts(const Mesh& truth, const Mesh& holed,
                                          double parts_bound) {
   ASSERT_EQ(find_holes(holed, build_topology(holed)).loops.size(), 1u);
   const HardOutcome front = repair_hard_case(truth, holed, {}, name + ", default");
-  EXPECT_EQ(front.result.holes.at(0).method, "front");
+  EXPECT_EQ(front.result.holes.at(0).strategy, Strategy::front);
   EXPECT_LT(front.worst, front_bound);
   const HardOutcome parts = repair_hard_case(truth, holed, planes_only(), name + ", planes");
-  EXPECT_TRUE(std::any_of(parts.result.holes.begin(), parts.result.holes.end(),
-                          [](const HoleReport& hole) { return hole.method == "plane, in part"; }));
+  EXPECT_TRUE(
+      std::any_of(parts.result.holes.begin(), parts.result.holes.end(),
+                  [](const HoleReport& hole) { return hole.strategy == Strategy::plane_in_part; }));
   EXPECT_LT(parts.worst, parts_bound);
   EXPECT_LT(parts.hausdorff, parts_bound);
 }
@@ -400,7 +400,7 @@ TEST(HardHoles, ZoneReachingAnotherHoleDoesNotBridgeIt) {
   ASSERT_EQ(result.holes.size(), 2u);
   for (const HoleReport& hole : result.holes) {
     EXPECT_TRUE(hole.filled) << hole.failure;
-    EXPECT_EQ(hole.method, "plane");
+    EXPECT_EQ(hole.strategy, Strategy::plane);
     EXPECT_EQ(hole.other_holes.size(), 1u) << "the zone reaches the other hole";
   }
   EXPECT_EQ(result.open_count(OpenReason::failed), 0);
@@ -452,7 +452,7 @@ TEST(HardHoles, ZoneEnclosingAnIslandDoesNotCoverIt) {
   const RepairResult result = repair(holed, options);
   ASSERT_EQ(result.holes.size(), 1u);
   ASSERT_TRUE(result.holes[0].filled) << result.holes[0].failure;
-  EXPECT_EQ(result.holes[0].method, "plane");
+  EXPECT_EQ(result.holes[0].strategy, Strategy::plane);
   EXPECT_GT(result.holes[0].gap_pixels, 0);
   testing::expect_input_preserved(holed, result.mesh);
   for (const Vec3& p : generated_vertices(result.mesh)) {

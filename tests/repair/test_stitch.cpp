@@ -130,34 +130,27 @@ std::vector<Triangle> closing(int k) {
   return {{(k + 2) % 4, (k + 1) % 4, k}, {k, (k + 3) % 4, (k + 2) % 4}};
 }
 
-// validate_fill accepts a fill that joins as a manifold, and refuses (ProcessingError) a boundary
+// fill_defect accepts a fill that joins as a manifold, and names the defect of a boundary
 // edge used forwards, a fill with a border of its own, an edge used twice the same way, a chord
 // the mesh already has, a degenerate triangle and, given a frame, a triangle seen from behind.
-TEST(ValidateFill, RefusesFillsThatWouldNotJoinAsAManifold) {
+TEST(FillDefect, NamesWhatKeepsAFillFromJoiningAsAManifold) {
   const Quad quad = bent_quad();
   ASSERT_EQ(quad.loop.vertices.size(), 4u);
   const int free_chord = quad.chord_start + 1;  // b–d: not a mesh edge
-  EXPECT_NO_THROW(
-      validate_fill(quad.mesh, quad.topology, quad.loop, fill_of(quad, closing(free_chord))));
+  EXPECT_FALSE(fill_defect(quad.mesh, quad.topology, fill_of(quad, closing(free_chord))));
 
   // Wrong direction: the same triangles turned over use each boundary edge forwards.
   std::vector<Triangle> flipped = closing(free_chord);
   for (Triangle& t : flipped) std::swap(t[0], t[2]);
-  EXPECT_THROW(validate_fill(quad.mesh, quad.topology, quad.loop, fill_of(quad, flipped)),
-               ProcessingError);
+  EXPECT_TRUE(fill_defect(quad.mesh, quad.topology, fill_of(quad, flipped)));
   // A border of its own: one triangle leaves two boundary edges and the chord open.
-  EXPECT_THROW(
-      validate_fill(quad.mesh, quad.topology, quad.loop, fill_of(quad, {closing(free_chord)[0]})),
-      ProcessingError);
+  EXPECT_TRUE(fill_defect(quad.mesh, quad.topology, fill_of(quad, {closing(free_chord)[0]})));
   // An edge twice in one direction.
   std::vector<Triangle> doubled = closing(free_chord);
   doubled.push_back(doubled[0]);
-  EXPECT_THROW(validate_fill(quad.mesh, quad.topology, quad.loop, fill_of(quad, doubled)),
-               ProcessingError);
+  EXPECT_TRUE(fill_defect(quad.mesh, quad.topology, fill_of(quad, doubled)));
   // The chord a–c duplicates the mesh's own edge (the fill would make a closed two-sided pillow).
-  EXPECT_THROW(
-      validate_fill(quad.mesh, quad.topology, quad.loop, fill_of(quad, closing(quad.chord_start))),
-      ProcessingError);
+  EXPECT_TRUE(fill_defect(quad.mesh, quad.topology, fill_of(quad, closing(quad.chord_start))));
   // A degenerate triangle: a new point at the middle of the free chord, on the segment.
   Fill degenerate = fill_of(quad, {});
   const int k = free_chord % 4;
@@ -169,22 +162,21 @@ TEST(ValidateFill, RefusesFillsThatWouldNotJoinAsAManifold) {
                           {4, (k + 1) % 4, k},
                           {k, (k + 3) % 4, 4},
                           {4, (k + 3) % 4, (k + 2) % 4}};
-  EXPECT_NO_THROW(validate_fill(quad.mesh, quad.topology, quad.loop, degenerate));
+  EXPECT_FALSE(fill_defect(quad.mesh, quad.topology, degenerate));
   degenerate.points[0] = quad.mesh.positions[quad.loop.vertices[(k + 1) % 4]] * 0.5 +
                          quad.mesh.positions[quad.loop.vertices[k]] * 0.5;  // on edge k–(k+1)
-  EXPECT_THROW(validate_fill(quad.mesh, quad.topology, quad.loop, degenerate), ProcessingError);
+  EXPECT_TRUE(fill_defect(quad.mesh, quad.topology, degenerate));
 
   // Seen through a frame: the fill faces −z (the quad's faces face +z), so a frame looking down
   // +z sees it from behind; one looking from −z sees it from the front.
   const Fill good = fill_of(quad, closing(free_chord));
   Frame from_above, from_below;
   from_below.rotation = Eigen::AngleAxisd(M_PI, Vec3::UnitX()).toRotationMatrix();
-  EXPECT_THROW(validate_fill(quad.mesh, quad.topology, quad.loop, good, &from_above),
-               ProcessingError);
-  EXPECT_NO_THROW(validate_fill(quad.mesh, quad.topology, quad.loop, good, &from_below));
+  EXPECT_TRUE(fill_defect(quad.mesh, quad.topology, good, &from_above));
+  EXPECT_FALSE(fill_defect(quad.mesh, quad.topology, good, &from_below));
 }
 
-// T1 ∪ T2 on a flat sheet seen along its normal: the fill passes validate_fill with the frame,
+// T1 ∪ T2 on a flat sheet seen along its normal: the fill passes fill_defect with the frame,
 // covers exactly the hole's area, and merged with the sheet leaves only the outer border open,
 // without intersections.
 TEST(Stitch, FlatSheetHoleIsCoveredExactly) {
@@ -204,7 +196,9 @@ TEST(Stitch, FlatSheetHoleIsCoveredExactly) {
   frame.rotation = rotation.transpose();
   const RangeImage image = rasterize_zone(sheet, zone, hole, frame, mean_edge_length(sheet));
   const Patch patch = back_project(sheet, hole, image, image.depth);
-  const Fill fill = stitch(sheet, topology, hole, frame, patch, triangulate_grid(patch));
+  const FillOutcome outcome = stitch(sheet, topology, hole, frame, patch, triangulate_grid(patch));
+  ASSERT_TRUE(std::holds_alternative<Fill>(outcome));
+  const Fill& fill = std::get<Fill>(outcome);
 
   EXPECT_EQ(fill.boundary, hole.vertices);
   EXPECT_EQ(fill.points.size(), patch.points.size());  // every grid point is used

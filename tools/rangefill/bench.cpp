@@ -24,7 +24,7 @@ using nlohmann::json;
 struct BenchCommand {
   std::vector<std::string> meshes;
   std::string inpainters, baselines, trends = "auto", csv, save, out, filler = "plane";
-  std::string fallback = "front,least-area", shapes = "disk,elongated";
+  std::string fallback = kDefaultFallbacks, shapes = "disk,elongated";
   PunchOptions punch = [] {
     PunchOptions options;
     options.max_radius = 20;
@@ -268,8 +268,7 @@ int run_bench(const BenchCommand& command) {
       options.inpainter = inpainter;
       options.inpainting = command.inpainting;
       options.trend = trend;
-      options.filler = command.filler == "front" ? Filler::front : Filler::plane;
-      set_fallbacks(command.fallback, options);
+      options.strategies = strategies_from_arguments(command.filler, command.fallback);
       methods.push_back(
           pipeline_method(inpainter + (trends.size() > 1 ? "+" + trend_name(trend) : ""), options));
     }

@@ -35,25 +35,13 @@ void add_patch_options(CLI::App* command, HoleSampleOptions& samples) {
       ->capture_default_str();
 }
 
-void set_fallbacks(const std::string& list, RepairOptions& options) {
-  options.fallback_front = options.fallback_least_area = false;
-  if (list == "none") return;
-  std::stringstream stream(list);
-  for (std::string item; std::getline(stream, item, ',');) {
-    if (item == "front") {
-      options.fallback_front = true;
-    } else if (item == "least-area") {
-      options.fallback_least_area = true;
-    } else {
-      throw UsageError("--fallback: unknown '" + item + "' (expected front, least-area or none)");
-    }
+std::vector<Strategy> strategies_from_arguments(const std::string& filler,
+                                                const std::string& fallback) {
+  try {
+    return strategy_chain(filler_from_name(filler), fallback);
+  } catch (const InvalidInput& error) {
+    throw UsageError(std::string("--filler/--fallback: ") + error.what());
   }
-}
-
-std::string fallback_names(const RepairOptions& options) {
-  if (options.fallback_front && options.fallback_least_area) return "front,least-area";
-  if (options.fallback_front) return "front";
-  return options.fallback_least_area ? "least-area" : "none";
 }
 
 std::vector<std::string> split_list(const std::string& text) {

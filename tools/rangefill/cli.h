@@ -77,12 +77,10 @@ inline const char* const kValidationMeshes = "bunny.ply,fandisk.ply,homer.ply";
 /// --patches, --patch-size and --seed of the commands that cut depth patches from meshes.
 void add_patch_options(CLI::App* command, HoleSampleOptions& samples);
 
-/// Sets RepairOptions' fallbacks from "front,least-area", "front", "least-area" or "none"; throws
-/// UsageError otherwise.
-void set_fallbacks(const std::string& list, RepairOptions& options);
-
-/// The list set_fallbacks reads for `options`' fallbacks.
-std::string fallback_names(const RepairOptions& options);
+/// RepairOptions::strategies from --filler ("plane", "front") and --fallback (strategy_chain);
+/// throws UsageError on an unknown name.
+std::vector<Strategy> strategies_from_arguments(const std::string& filler,
+                                                const std::string& fallback);
 
 /// SIGINT, SIGTERM and SIGHUP no longer kill the process where it stands: a thread of their own
 /// takes them and exits with 128 + the signal's number, but never while an OutputGuard is held, so

@@ -24,8 +24,8 @@ struct RepairCommand {
   RepairOptions options;
   std::string input, output, report, debug_dir, holes = "all";
   std::string trend = trend_name(options.trend);
-  std::string filler = options.filler == Filler::front ? "front" : "plane";
-  std::string fallback = fallback_names(options);
+  std::string filler = filler_name(Filler::plane);  // RepairOptions' strategies: the chain of
+  std::string fallback = kDefaultFallbacks;         // this filler and these fallbacks
   std::string mesher = "greedy";
   bool in_place = false, json = false, ascii = false, fill_all = false;
 };
@@ -222,8 +222,7 @@ int run_repair(RepairCommand& command) {
   command.options.holes = parse_hole_ids(command.holes);
   command.options.trend = trend_from_name(command.trend);
   if (command.fill_all) command.options.border_share = 0;
-  command.options.filler = command.filler == "front" ? Filler::front : Filler::plane;
-  set_fallbacks(command.fallback, command.options);
+  command.options.strategies = strategies_from_arguments(command.filler, command.fallback);
   const Mesher mesher = mesher_from_name(command.mesher);
   Mesh mesh = load_mesh(command.input);
   if (mesh.triangles.empty()) {

@@ -8,9 +8,9 @@
 #include "rangefill/core/intersection.h"
 #include "rangefill/core/mesh.h"
 #include "rangefill/core/topology.h"
+#include "rangefill/repair/fill.h"
 #include "rangefill/repair/holes.h"
 #include "rangefill/repair/mls.h"
-#include "rangefill/repair/stitch.h"
 
 namespace rangefill {
 
@@ -34,9 +34,11 @@ struct FrontOptions {
 /// closes the hole. A front that stalls or stops getting shorter is closed at once by
 /// triangulate_loop_least_area (Liepa's triangulation, as CGAL implements it). Each pass's new
 /// points join `surface`'s samples, so that the surface the front projects onto grows with it.
-/// Samples facing away from the front (the other side of a thin part) are ignored. Throws
-/// ProcessingError (naming the hole) when it stalls or does not close.
-Fill fill_by_front(const Mesh& mesh, const MeshTopology& topology, const IntersectionIndex& faces,
-                   const BoundaryLoop& hole, MlsSurface surface, const FrontOptions& options = {});
+/// Samples facing away from the front (the other side of a thin part) are ignored. Refused
+/// (front_stuck) when the front grows past ten times a flat disk's triangles or its last vertices
+/// cannot be closed. Throws InvalidInput when the hole has fewer than 3 vertices.
+FillOutcome fill_by_front(const Mesh& mesh, const MeshTopology& topology,
+                          const IntersectionIndex& faces, const BoundaryLoop& hole,
+                          MlsSurface surface, const FrontOptions& options = {});
 
 }  // namespace rangefill

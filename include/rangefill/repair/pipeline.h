@@ -1,5 +1,6 @@
-// The repair pipeline (Pérez et al., Sections IV–IX): every hole becomes a range image, is restored
-// by an inpainter, mapped back to 3D, stitched and merged; then holes are looked for again.
+// The repair pipeline (Pérez et al., Sections IV–IX): the loops to fill are chosen, each is filled
+// by the fill chain (fill_chain.h) against the same mesh, the fills are merged (Section IX), and
+// holes are looked for again, pass after pass.
 #pragma once
 
 #include <array>
@@ -7,91 +8,16 @@
 #include <string>
 #include <vector>
 
-#include <opencv2/core.hpp>
-
-#include "rangefill/core/intersection.h"
 #include "rangefill/core/mesh.h"
-#include "rangefill/inpaint/inpainter.h"
-#include "rangefill/repair/back_projection.h"
-#include "rangefill/repair/complex_hole.h"
-#include "rangefill/repair/front.h"
+#include "rangefill/core/topology.h"
+#include "rangefill/repair/fill.h"
+#include "rangefill/repair/fill_chain.h"
 #include "rangefill/repair/holes.h"
-#include "rangefill/repair/projection.h"
-#include "rangefill/repair/range_image.h"
-#include "rangefill/repair/stitch.h"
-#include "rangefill/repair/trend.h"
-#include "rangefill/repair/zone.h"
 
 namespace rangefill {
 
-/// What happened to one hole.
-struct HoleReport {
-  int id = 0;    // unique over the run; the provenance of what it generated. In pass 0 it is the
-                 // loop's id in the input (as `rangefill holes` lists them)
-  int pass = 0;  // 0 for the input's holes, 1+ for holes found again after merging
-  int loop = 0;  // id of the loop in its pass's HoleSet
-  int boundary_vertices = 0;
-  double area = 0;
-  int rings = 0;  // ν
-  int zone_faces = 0;
-  cv::Size image_size;
-  int masked_pixels = 0;
-  int gap_pixels = 0;
-  double rim_support = 0;             // of the image used (range_image.h)
-  TrendKind trend = TrendKind::none;  // the trend actually fitted (after fallbacks)
-  int new_vertices = 0;
-  int new_faces = 0;
-  double seconds = 0;             // whole hole
-  struct Stages {                 // of which (seconds; summed over the planes tried)
-    double zone = 0, planes = 0;  // grow_zone, find_projections
-    double image = 0;             // visible_part, rasterize_zone, fill_small_gaps
-    double inpainting = 0;        // the trend and the back-end (on the colours too, if any)
-    double stitching = 0;         // back_project, triangulate_grid, stitch
-    double checking = 0;          // the intersection test of the fill
-    double front = 0;             // the advancing front, its checks included
-  } stages;
-  std::vector<int> other_holes;  // other loops the zone reached
-  bool filled = false;
-  std::string method;   // "plane", "front", "plane, in part" (VI-C: the rest is a new hole),
-                        // "Liepa" or "least area"
-  std::string failure;  // why not, when not filled
-};
-
-/// Everything a person needs to look at one hole's images (see RepairOptions::on_images).
-struct HoleImages {
-  int id = 0;  // HoleReport::id
-  const RangeImage& image;
-  const cv::Mat& restored;
-};
-
-/// How holes are filled: through range images on projection planes (the Pérez pipeline), or by
-/// the advancing front (Tekumalla & Cohen).
-enum class Filler { plane, front };
-
-struct RepairOptions {
-  Filler filler = Filler::plane;
-  bool fallback_front = true;       // holes the planes cannot fill go to the advancing front
-  bool fallback_least_area = true;  // ... and then to a patch of the loop without new vertices
-                                    // (Liepa's weight, else least area)
-  FrontOptions front;
-  MlsOptions mls;
-  std::string inpainter = "foe";  // the depth-trained FoE: best on the benchmark (README)
-  InpainterOptions inpainting;
-  /// Trend removed before inpainting and added back (trend.h); the back-end then only restores the
-  /// residual. OpenCV's telea and ns are weighted means at heart and, on curved surfaces, pull a
-  /// fill towards the lower ring around the hole (a cap of a sphere came back below its cutting
-  /// plane); a quadric continued from the rim overshoots a wide spherical cap (1 d_m on 40°).
-  /// Automatic by default (the sphere where it fits the rim better, else the quadric): on the
-  /// punched benchmark H median 0.44 against 0.46 d_m with the quadric alone (foe; README).
-  /// `none` is the paper's pipeline, for ablations.
-  TrendKind trend = TrendKind::automatic;
-  double min_rim_support = 0.9;  // a plane whose image sees less of the hole's surroundings
-                                 // (rim_support after gap filling) gives way to the next
-  double trend_ring = 3;         // known pixels within this many pixels of the hole are fitted
-  ZoneOptions zone;
-  ProjectionOptions projection;
-  RangeImageOptions image;
-  BackProjectionOptions back_projection;
+/// How holes are chosen and filled: the fill chain's options and which loops, in how many passes.
+struct RepairOptions : FillOptions {
   std::vector<int> holes;  // ids of the input's loops to fill (each must exist: else
                            // InvalidInput); empty = every loop but the borders
   /// With `holes` empty, input loops for which is_border(loop, border_share) holds are left open
@@ -101,8 +27,8 @@ struct RepairOptions {
   double max_hole_area = 0;  // loops with a larger area are left open; 0 = no limit
   int passes = 8;   // rounds of detect–fill–merge (Section IX); complex holes take one per part
   int threads = 1;  // holes of a pass are independent; the result does not depend on it
-  std::function<void(const HoleReport&)> on_hole;    // after each hole (any thread, serialised)
-  std::function<void(const HoleImages&)> on_images;  // after each inpainting (serialised)
+  std::function<void(const HoleReport&)> on_hole;  // after each hole (any thread, serialised);
+                                                   // on_images is serialised too
 };
 
 /// Why a boundary loop of the repaired mesh is open.
@@ -141,29 +67,6 @@ struct RepairResult {
   /// Open loops for `reason`.
   int open_count(OpenReason reason) const;
 };
-
-/// What every hole of a pass reads: the mesh and what is derived from it once per pass.
-struct SurfaceContext {
-  /// `mean_edge`: the d_m to use; 0 takes this mesh's.
-  SurfaceContext(const Mesh& mesh, double mean_edge);
-  const Mesh& mesh;
-  MeshTopology topology;
-  HoleSet holes;
-  std::vector<Vec3> normals;  // area-weighted, from the faces
-  double mean_edge;           // d_m
-  IntersectionIndex faces;    // for refusing fills that would cut through the surface
-};
-
-/// Fills one hole. With Filler::plane: Sections V–VIII on the best acceptable plane, else the next
-/// ones; then, if allowed, the advancing front; then a part of the hole (VI-C, complex_hole.h) with
-/// a zone and planes of its own, the rest left to the next pass; then, if allowed, a patch of the
-/// loop without new vertices (Liepa's weight, triangulate_loop_liepa, else least area). Reads
-/// `surface` only; safe to call concurrently. `report` receives the figures of the stages it
-/// reached (its id, pass, loop, boundary_vertices and area are the caller's to set). Throws
-/// ProcessingError with the reasons when no filler succeeds (a fill is refused when it would not be
-/// manifold or would intersect the surface or itself).
-Fill fill_hole(const SurfaceContext& surface, const BoundaryLoop& hole, const Inpainter& inpainter,
-               const RepairOptions& options, HoleReport& report);
 
 /// Colours for new points (the advancing front's, say) from the colours of the hole's boundary
 /// vertices, weighted by their inverse squared distance (Shepard). Requires mesh.has_colors().

@@ -2,13 +2,14 @@
 // VIII).
 #pragma once
 
-#include <set>
-#include <utility>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "rangefill/core/mesh.h"
 #include "rangefill/core/topology.h"
 #include "rangefill/repair/back_projection.h"
+#include "rangefill/repair/fill.h"
 #include "rangefill/repair/holes.h"
 #include "rangefill/repair/projection.h"
 
@@ -20,28 +21,20 @@ namespace rangefill {
 /// Triangles index `patch.points`.
 std::vector<Triangle> triangulate_grid(const Patch& patch);
 
-/// A hole's fill before it joins the mesh. Fill vertex i < boundary.size() is mesh vertex
-/// boundary[i]; fill vertex boundary.size() + k is the new point points[k].
-struct Fill {
-  std::vector<int> boundary;
-  std::vector<Vec3> points;
-  std::vector<Triangle> triangles;
-  std::vector<Rgb> colors;  // of the points, when they were restored with the geometry; else empty
-};
-
-/// Throws ProcessingError (naming the hole) unless the fill joins the mesh as a manifold: each
-/// boundary edge used exactly once, reversed; every other edge used twice in opposite directions;
-/// no chord between boundary vertices that the mesh already has as an edge; no triangle of zero
-/// area, nor, given a frame, one seen from behind.
-void validate_fill(const Mesh& mesh, const MeshTopology& topology, const BoundaryLoop& hole,
-                   const Fill& fill, const Frame* frame = nullptr);
+/// Why `fill` would not join the mesh as a manifold, or nullopt when it would: each boundary edge
+/// used exactly once, reversed; every other edge used twice in opposite directions; no chord
+/// between boundary vertices that the mesh already has as an edge; no triangle of zero area, nor,
+/// given a frame, one seen from behind.
+std::optional<std::string> fill_defect(const Mesh& mesh, const MeshTopology& topology,
+                                       const Fill& fill, const Frame* frame = nullptr);
 
 /// T2 and the union: drops grid triangles that cross or touch the projected hole boundary, then
 /// triangulates the band between the boundary and the grid's border by a constrained Delaunay
 /// triangulation in the projection plane (2.5D, CGAL) that keeps every boundary edge and every
 /// border edge, and returns T1 ∪ T2 with unused points removed (and their colours, if the patch has
-/// any), checked by validate_fill with the frame.
-Fill stitch(const Mesh& mesh, const MeshTopology& topology, const BoundaryLoop& hole,
-            const Frame& frame, const Patch& patch, const std::vector<Triangle>& grid);
+/// any), checked by fill_defect with the frame; refused (not_manifold) where that fails or the
+/// triangulation cannot be made.
+FillOutcome stitch(const Mesh& mesh, const MeshTopology& topology, const BoundaryLoop& hole,
+                   const Frame& frame, const Patch& patch, const std::vector<Triangle>& grid);
 
 }  // namespace rangefill

@@ -1,0 +1,47 @@
+// What every way of filling a hole gives: a fill, or a refusal saying why there is none.
+#pragma once
+
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "rangefill/core/mesh.h"
+
+namespace rangefill {
+
+/// A hole's fill before it joins the mesh. Fill vertex i < boundary.size() is mesh vertex
+/// boundary[i]; fill vertex boundary.size() + k is the new point points[k].
+struct Fill {
+  std::vector<int> boundary;
+  std::vector<Vec3> points;
+  std::vector<Triangle> triangles;
+  std::vector<Rgb> colors;  // of the points, when they were restored with the geometry; else empty
+};
+
+/// Why a hole was not filled, by a strategy of the fill chain (fill_chain.h) or at all.
+enum class Refusal {
+  nonmanifold_rim,   // the loop passes one of the input's unfillable_vertices (topology.h)
+  empty_zone,        // the zone of interest has no face (Section V)
+  no_plane,          // no plane sees the rim from the front with a simple boundary (VI-C)
+  partial_view,      // the image sees less of the hole's surroundings than min_rim_support
+  not_manifold,      // the fill would not join the mesh as a manifold (stitching, validation)
+  intersects,        // the fill would intersect the surface or itself
+  front_stuck,       // the advancing front did not close
+  no_part,           // no part of a complex hole could be filled (VI-C)
+  no_triangulation,  // the loop has no triangulation without new vertices
+  error,             // a stage failed (ProcessingError), its message in the detail
+};
+
+/// The refusal in words, e.g. "the fill would intersect the surface or itself".
+std::string refusal_text(Refusal refusal);
+
+/// A refusal and what it is about (one line; may be empty).
+struct Refused {
+  Refusal refusal = Refusal::error;
+  std::string detail;
+};
+
+/// A fill, or why there is none.
+using FillOutcome = std::variant<Fill, Refused>;
+
+}  // namespace rangefill
