@@ -216,6 +216,12 @@ Mesh make_box(int n) {
   return make_mesh(positions, triangles);
 }
 
+void remove_grid_quad(Mesh& mesh, int n, int x, int y) {
+  const int first = 2 * (y * n + x);
+  mesh.triangles.erase(mesh.triangles.begin() + first, mesh.triangles.begin() + first + 2);
+  mesh.face_hole.resize(mesh.triangles.size());
+}
+
 BoundaryLoop inner_loop(const Mesh& mesh) {
   BoundaryLoop hole;
   hole.area_share = std::numeric_limits<double>::infinity();

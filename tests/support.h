@@ -71,6 +71,9 @@ Mesh remove_faces(const Mesh& mesh, Predicate inside) {
   return make_mesh(mesh.positions, kept);
 }
 
+/// Removes the two triangles of grid quad (x, y) from make_grid(n).
+void remove_grid_quad(Mesh& mesh, int n, int x, int y);
+
 /// The loop of `mesh` of least area_share (empty if none): the hole of a sheet with one.
 BoundaryLoop inner_loop(const Mesh& mesh);
 

@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <thread>
 
 #include <ceres/ceres.h>
 #include <Eigen/SparseCholesky>
 #include <opencv2/imgproc.hpp>
 
 #include "rangefill/core/errors.h"
+#include "rangefill/core/parallel.h"
 
 namespace rangefill {
 
@@ -230,15 +230,9 @@ double FoeObjective::evaluate(const std::vector<double>& theta,
   // One slot per sample, summed in sample order: the same at any thread count.
   std::vector<double> losses(samples_.size());
   std::vector<std::vector<double>> raws(gradient ? samples_.size() : 0, std::vector<double>(raw));
-  std::vector<std::thread> workers;
-  for (int t = 0; t < threads_; ++t) {
-    workers.emplace_back([&, t] {
-      for (size_t s = t; s < samples_.size(); s += threads_) {
-        losses[s] = sample_loss(foe, samples_[s], gradient ? &raws[s] : nullptr);
-      }
-    });
-  }
-  for (std::thread& worker : workers) worker.join();
+  parallel_for(static_cast<int>(samples_.size()), threads_, [&](int s) {
+    losses[s] = sample_loss(foe, samples_[s], gradient ? &raws[s] : nullptr);
+  });
   const double n = std::max<size_t>(1, samples_.size());
   double loss = 0;
   for (double l : losses) loss += l / n;

@@ -1,5 +1,5 @@
-// Depth maps (depth.h): fill_depth on planes, quadrics and discontinuities, its options and
-// argument checks; depth image files; the renderer; sensor-like holes; sensor frames.
+// fill_depth on planes, quadrics and discontinuities, its options and argument checks, and on
+// sensor frames.
 #include "rangefill/depth/fill_depth.h"
 #include "rangefill/eval/render.h"
 #include "rangefill/eval/sensor_holes.h"
@@ -15,6 +15,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/photo.hpp>
 
+#include "depth_scenes.h"
 #include "rangefill/core/errors.h"
 #include "rangefill/io/mesh_io.h"
 #include "support.h"
@@ -22,51 +23,7 @@
 namespace rangefill {
 namespace {
 
-namespace fs = std::filesystem;
-
-const CameraIntrinsics kCamera;  // 525, 525, 319.5, 239.5
-const cv::Size kSize(640, 480);
-
-// The direction (z = 1) of the ray through pixel (col, row).
-Vec3 ray(int col, int row) {
-  return {(col - kCamera.cx) / kCamera.fx, (row - kCamera.cy) / kCamera.fy, 1};
-}
-
-// CV_32F metres: depth(ray) at every pixel.
-cv::Mat depth_image(const std::function<double(const Vec3&)>& depth) {
-  cv::Mat image(kSize, CV_32F);
-  for (int row = 0; row < kSize.height; ++row) {
-    for (int col = 0; col < kSize.width; ++col)
-      image.at<float>(row, col) = static_cast<float>(depth(ray(col, row)));
-  }
-  return image;
-}
-
-// The plane n·X = d seen along a ray.
-double plane_depth(const Vec3& direction, const Vec3& normal, double d) {
-  return d / normal.dot(direction);
-}
-
-// The sphere |X − centre| = radius seen along a ray (its near side), 0 where missed.
-double sphere_depth(const Vec3& direction, const Vec3& centre, double radius) {
-  const double a = direction.squaredNorm(), b = direction.dot(centre);
-  const double discriminant = b * b - a * (centre.squaredNorm() - radius * radius);
-  return discriminant < 0 ? 0 : (b - std::sqrt(discriminant)) / a;
-}
-
-cv::Mat disc(cv::Point centre, int radius) {
-  cv::Mat mask = cv::Mat::zeros(kSize, CV_8U);
-  cv::circle(mask, centre, radius, cv::Scalar(255), cv::FILLED);
-  return mask;
-}
-
-// Largest |a − b| (metres) over the mask.
-double max_error(const cv::Mat& a, const cv::Mat& b, const cv::Mat& mask) {
-  cv::Mat a64, b64;
-  a.convertTo(a64, CV_64F);
-  b.convertTo(b64, CV_64F);
-  return cv::norm(a64, b64, cv::NORM_INF, mask);
-}
+using namespace testing::depth_scenes;
 
 // Every back-end restores a tilted plane, linear in inverse depth: with the plane trend exactly;
 // without (the default) harmonic exactly, telea and ns within 1 % (OpenCV's weighted means).
@@ -366,220 +323,6 @@ TEST(FillDepth, RefusesBadArguments) {
     spoil(bad);
     EXPECT_THROW(fill_depth(depth, cv::noArray(), out, bad), InvalidInput);
   }
-}
-
-// ---------------------------------------------------------------------------------------------
-// Files
-
-cv::Mat sample_depth(int type) {
-  cv::Mat depth(37, 53, type);
-  cv::randu(depth, 0, type == CV_16UC1 ? 65535 : 9.5);
-  depth(cv::Rect(3, 4, 5, 6)).setTo(0);
-  if (type == CV_32FC1) depth.at<float>(10, 10) = std::numeric_limits<float>::quiet_NaN();
-  return depth;
-}
-
-bool bit_identical(const cv::Mat& a, const cv::Mat& b) {
-  return a.type() == b.type() && a.size() == b.size() &&
-         std::memcmp(a.data, b.data, a.total() * a.elemSize()) == 0;
-}
-
-// 16-bit PNG and TIFF, float TIFF and EXR come back bit for bit (NaN included); the write is atomic
-// (no temporary file left).
-TEST(DepthFiles, RoundTripsBitForBit) {
-  const fs::path dir = testing::temporary_directory("depth-files");
-  for (const char* name : {"a.png", "a.tif", "b.TIFF"}) {
-    const cv::Mat depth = sample_depth(CV_16UC1);
-    write_depth_image(depth, dir / name);
-    EXPECT_TRUE(bit_identical(read_depth_image(dir / name), depth)) << name;
-  }
-  for (const char* name : {"c.tiff", "c.exr"}) {
-    const cv::Mat depth = sample_depth(CV_32FC1);
-    write_depth_image(depth, dir / name);
-    EXPECT_TRUE(bit_identical(read_depth_image(dir / name), depth)) << name;
-  }
-  int files = 0;
-  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++files;
-  EXPECT_EQ(files, 5);
-  fs::remove_all(dir);
-}
-
-std::string message_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "no exception";
-}
-
-// Unreadable files and images that are not depth give one-line errors naming the file; formats
-// that cannot hold the type are refused before writing.
-TEST(DepthFiles, ClearErrorsForBadFiles) {
-  const fs::path dir = testing::temporary_directory("depth-bad");
-  const std::string missing = (dir / "missing.png").string();
-  EXPECT_THROW(read_depth_image(missing), IoError);
-  EXPECT_EQ(message_of([&] { read_depth_image(missing); }).rfind(missing + ": cannot open", 0), 0u);
-
-  write_file_atomically("not an image at all", dir / "text.png");
-  EXPECT_EQ(message_of([&] { read_depth_image(dir / "text.png"); }),
-            (dir / "text.png").string() + ": not a PNG, TIFF or EXR image");
-  const std::string png16 = [&] {
-    write_depth_image(sample_depth(CV_16UC1), dir / "full.png");
-    return read_file(dir / "full.png");
-  }();
-  write_file_atomically(png16.substr(0, png16.size() / 2), dir / "truncated.png");
-  EXPECT_THROW(read_depth_image(dir / "truncated.png"), InvalidInput);
-
-  cv::imwrite((dir / "gray8.png").string(), cv::Mat(4, 4, CV_8U, cv::Scalar(7)));
-  EXPECT_EQ(message_of([&] { read_depth_image(dir / "gray8.png"); }),
-            (dir / "gray8.png").string() +
-                ": CV_8UC1 is not depth: expected 16-bit unsigned (millimetres) or 32-bit float "
-                "(metres)");
-  cv::imwrite((dir / "rgb.png").string(), cv::Mat(4, 4, CV_16UC3, cv::Scalar(7, 8, 9)));
-  EXPECT_EQ(message_of([&] { read_depth_image(dir / "rgb.png"); }),
-            (dir / "rgb.png").string() + ": has 3 channels; a depth or mask image has one");
-  EXPECT_EQ(cv::countNonZero(read_mask_image(dir / "gray8.png")), 16);
-
-  EXPECT_EQ(message_of([&] { write_depth_image(sample_depth(CV_32FC1), dir / "f.png"); }),
-            (dir / "f.png").string() +
-                ": PNG holds 16-bit depth only; write float depth to .tif or .exr");
-  EXPECT_THROW(write_depth_image(sample_depth(CV_16UC1), dir / "f.exr"), InvalidInput);
-  EXPECT_THROW(write_depth_image(sample_depth(CV_16UC1), dir / "f.jpg"), InvalidInput);
-  EXPECT_THROW(write_depth_image(sample_depth(CV_16UC1), dir / "no-such-dir" / "f.png"), IoError);
-  fs::remove_all(dir);
-}
-
-// A damaged PNG is refused by the PNG check (src/png_check.h) before OpenCV sees it: one line
-// naming the file, and nothing printed by libpng (which, under OpenCV, reports to stderr).
-TEST(DepthFiles, DamagedPngsAreRefusedWithoutLibpngOutput) {
-  const fs::path dir = testing::temporary_directory("depth-png");
-  const cv::Mat depth = sample_depth(CV_16UC1);
-  write_depth_image(depth, dir / "full.png");
-  const std::string png = read_file(dir / "full.png");
-  std::string crc = png;
-  crc[png.size() - 20] ^= 0x40;  // a byte of the last IDAT chunk (IEND takes the last 12)
-  std::string type = png;
-  type[12] = '1';  // IHDR's type
-  const std::vector<std::pair<std::string, std::string>> cases = {
-      {"truncated.png", png.substr(0, png.size() / 2)},
-      {"crc.png", crc},
-      {"type.png", type},
-      {"no-iend.png", png.substr(0, png.size() - 12)},
-      {"header-only.png", png.substr(0, 33) + png.substr(png.size() - 12)},
-  };
-  for (const auto& [name, bytes] : cases) {
-    SCOPED_TRACE(name);
-    const fs::path path = dir / name;  // a lambda may not capture a structured binding in C++17
-    write_file_atomically(bytes, path);
-    ::testing::internal::CaptureStderr();
-    const std::string message = message_of([&] { read_depth_image(path); });
-    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
-    EXPECT_EQ(message.rfind(path.string() + ": corrupt PNG: ", 0), 0u) << message;
-    EXPECT_EQ(message.find('\n'), std::string::npos);
-  }
-  EXPECT_TRUE(bit_identical(read_depth_image(dir / "full.png"), depth));
-  fs::remove_all(dir);
-
-  // The PNG fuzzer's corpus (tests/fuzz/corpus/png, with its findings): each file is read or
-  // refused with one line naming it, silently.
-  const fs::path corpus = fs::path(RANGEFILL_SOURCE_DIR) / "tests" / "fuzz" / "corpus" / "png";
-  int read = 0;
-  for (const fs::directory_entry& entry : fs::directory_iterator(corpus)) {
-    SCOPED_TRACE(entry.path().filename().string());
-    ::testing::internal::CaptureStderr();
-    const std::string message = message_of([&] { read_depth_image(entry.path()); });
-    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
-    read += message == "no exception";
-    if (message != "no exception") {
-      EXPECT_EQ(message.rfind(entry.path().string() + ": ", 0), 0u) << message;
-      EXPECT_EQ(message.find('\n'), std::string::npos);
-    }
-  }
-  EXPECT_EQ(read, 2);  // the 16-bit greyscale ones, interlaced or not
-}
-
-// ---------------------------------------------------------------------------------------------
-// Rendering
-
-// A quad of the plane z = 2 (camera looking along +z from the origin) renders as that plane; a
-// tilted one as the analytic depth of its plane; outside it nothing.
-TEST(RenderDepth, RendersPlanesExactly) {
-  const Mesh quad =
-      make_mesh({{-1, -1, 2}, {1, -1, 2}, {1, 1, 2}, {-1, 1, 2}}, {{0, 1, 2}, {0, 2, 3}});
-  const Eigen::Isometry3d identity = Eigen::Isometry3d::Identity();
-  const cv::Mat flat = render_depth(quad, kCamera, identity, kSize);
-  // The quad spans ±1 m at 2 m: columns 319.5 ± 262.5, rows 239.5 ± 262.5 (all of them).
-  EXPECT_EQ(cv::countNonZero(flat), (582 - 57 + 1) * 480);
-  EXPECT_EQ(flat.at<float>(240, 320), 2.0f);
-  EXPECT_EQ(flat.at<float>(240, 40), 0.0f);
-
-  // Seen from (0.5, 0.3, −1) looking at (0, 0, 2): the plane z = 2 in camera coordinates.
-  const Eigen::Isometry3d pose = look_at({0.5, 0.3, -1}, {0, 0, 2}, {0, -1, 0});
-  const Vec3 normal_world(0, 0, 1);
-  const Vec3 normal = pose.linear() * normal_world;
-  const double d = normal.dot(pose * Vec3(0, 0, 2));
-  const cv::Mat tilted = render_depth(quad, kCamera, pose, kSize);
-  const cv::Mat truth = depth_image([&](const Vec3& r) { return plane_depth(r, normal, d); });
-  EXPECT_GT(cv::countNonZero(tilted), 50000);
-  EXPECT_LT(max_error(tilted, truth, tilted != 0), 1e-5);
-}
-
-// look_at puts the target on the optical axis, `up` up in the image, and keeps distances.
-TEST(RenderDepth, LookAtPointsTheCamera) {
-  const Eigen::Isometry3d pose = look_at({1, 2, 3}, {4, 6, 3}, {0, 0, 1});
-  const Vec3 target = pose * Vec3(4, 6, 3);
-  EXPECT_NEAR(target.x(), 0, 1e-12);
-  EXPECT_NEAR(target.y(), 0, 1e-12);
-  EXPECT_NEAR(target.z(), 5, 1e-12);
-  EXPECT_LT((pose * Vec3(4, 6, 4) - target).y(), 0);  // up is −y
-  EXPECT_NEAR(pose.linear().determinant(), 1, 1e-12);
-  EXPECT_THROW(look_at({0, 0, 0}, {0, 0, 1}, {0, 0, 1}), InvalidInput);
-}
-
-// A closed sphere renders without cracks (every pixel inside its silhouette has depth) and close to
-// the analytic sphere; the nearest surface wins over a plane behind it.
-TEST(RenderDepth, RendersAClosedMeshWithoutCracks) {
-  Mesh sphere = testing::make_sphere(24);
-  for (Vec3& p : sphere.positions) p = p * 0.5 + Vec3(0, 0, 2);
-  const Mesh wall =
-      make_mesh({{-9, -9, 4}, {9, -9, 4}, {9, 9, 4}, {-9, 9, 4}}, {{0, 1, 2}, {0, 2, 3}});
-  Mesh scene = sphere;
-  for (const Triangle& t : wall.triangles) {
-    scene.triangles.push_back(
-        {t[0] + sphere.vertex_count(), t[1] + sphere.vertex_count(), t[2] + sphere.vertex_count()});
-  }
-  scene.positions.insert(scene.positions.end(), wall.positions.begin(), wall.positions.end());
-  const cv::Mat depth = render_depth(scene, kCamera, Eigen::Isometry3d::Identity(), kSize);
-  EXPECT_EQ(cv::countNonZero(depth), kSize.area());
-  const cv::Mat truth = depth_image([](const Vec3& r) { return sphere_depth(r, {0, 0, 2}, 0.5); });
-  // The inscribed polyhedron's silhouette lies within the sphere's; on the cap facing the camera
-  // (up to 53° from the axis) depth is within a few times the chord error (0.16 mm).
-  EXPECT_EQ(cv::countNonZero((depth < 3) & (truth == 0)), 0);
-  EXPECT_LT(max_error(depth, truth, (truth > 0) & (truth < 1.7)), 1e-3);
-}
-
-// ---------------------------------------------------------------------------------------------
-// Sensor-like holes
-
-// Punched pixels are valid ones, about `fraction` of them, the same for a seed, other for another;
-// with a depth edge, shadows lie on its far side.
-TEST(PunchDepthHoles, PunchesValidPixelsDeterministically) {
-  cv::Mat depth(kSize, CV_16U, cv::Scalar(3000));
-  depth.colRange(300, 640).setTo(1500);
-  depth(cv::Rect(0, 0, 640, 20)).setTo(0);
-  SensorHoleOptions options;
-  options.fraction = 0.05;
-  const cv::Mat punched = punch_depth_holes(depth, options);
-  const double valid = cv::countNonZero(depth);
-  EXPECT_EQ(cv::countNonZero(punched & (depth == 0)), 0);
-  EXPECT_NEAR(cv::countNonZero(punched) / valid, 0.05, 0.005);
-  EXPECT_EQ(cv::norm(punched, punch_depth_holes(depth, options), cv::NORM_INF), 0);
-  options.seed = 2;
-  EXPECT_GT(cv::norm(punched, punch_depth_holes(depth, options), cv::NORM_L1), 0);
-  // Shadows: left of the near surface, on the far pixels next to the edge.
-  EXPECT_GT(cv::countNonZero(punched.col(299)), 20);
-  EXPECT_GT(cv::countNonZero(punched.col(299)), 2 * cv::countNonZero(punched.col(300)));
 }
 
 // ---------------------------------------------------------------------------------------------

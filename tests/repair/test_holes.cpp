@@ -31,13 +31,6 @@ void expect_loop_follows_faces(const Mesh& mesh, const BoundaryLoop& loop) {
   }
 }
 
-// Removes the two triangles of grid quad (x, y) from make_grid(n).
-void remove_quad(Mesh& mesh, int n, int x, int y) {
-  const int first = 2 * (y * n + x);
-  mesh.triangles.erase(mesh.triangles.begin() + first, mesh.triangles.begin() + first + 2);
-  mesh.face_hole.resize(mesh.triangles.size());
-}
-
 TEST(FindHoles, ClosedCubeHasNone) {
   const HoleSet holes = holes_of(make_cube());
   EXPECT_TRUE(holes.loops.empty());
@@ -77,8 +70,9 @@ TEST(FindHoles, GridHasOneOuterLoop) {
 
 TEST(FindHoles, GridWithTwoInteriorHoles) {
   Mesh grid = make_grid(6);
-  remove_quad(grid, 6, 4, 4);  // the later one first, so the earlier indices stay valid
-  remove_quad(grid, 6, 1, 1);
+  testing::remove_grid_quad(grid, 6, 4,
+                            4);  // the later one first, so the earlier indices stay valid
+  testing::remove_grid_quad(grid, 6, 1, 1);
   const HoleSet holes = holes_of(grid);
   ASSERT_EQ(holes.loops.size(), 3u);
   int outer = 0, interior = 0;
@@ -131,8 +125,8 @@ TEST(FindHoles, HoleTouchingTheBorderAtAVertexStaysItsOwnLoop) {
   // 3x3 grid without its centre quad and its corner quad (2, 2): the hole and the outer border meet
   // at grid vertex (2, 2). Walking each fan keeps them apart instead of one figure-eight.
   Mesh grid = make_grid(3);
-  remove_quad(grid, 3, 2, 2);  // the later one first
-  remove_quad(grid, 3, 1, 1);
+  testing::remove_grid_quad(grid, 3, 2, 2);  // the later one first
+  testing::remove_grid_quad(grid, 3, 1, 1);
   const HoleSet holes = holes_of(grid);
   ASSERT_EQ(holes.loops.size(), 2u);
   EXPECT_EQ(holes.pinched_vertices, (std::vector<int>{10}));
@@ -144,53 +138,6 @@ TEST(FindHoles, HoleTouchingTheBorderAtAVertexStaysItsOwnLoop) {
   }
   std::sort(sizes.begin(), sizes.end());
   EXPECT_EQ(sizes, (std::vector<size_t>{4, 12}));
-}
-
-TEST(Topology, MisorientedEdgeIsCounted) {
-  const Mesh mesh = make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, {{0, 1, 2}, {1, 3, 2}});
-  EXPECT_EQ(build_topology(mesh).misoriented_edge_count, 0);
-  const Mesh flipped =
-      make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, {{0, 1, 2}, {1, 2, 3}});
-  const MeshTopology topology = build_topology(flipped);
-  EXPECT_EQ(topology.misoriented_edge_count, 1);
-  EXPECT_TRUE(topology.nonmanifold_vertices.empty());
-}
-
-// Where loops of one component touch at a vertex, fills can join its fans: the vertex is fillable.
-// Where two components touch, or faces meet at a non-manifold edge, it is not.
-TEST(Topology, UnfillableVerticesAreWhereNoFillMakesAManifold) {
-  // A 3x3 grid without its centre quad and its corner quad (2, 2): the hole and the border touch
-  // at vertex 10, one component.
-  Mesh grid = make_grid(3);
-  remove_quad(grid, 3, 2, 2);
-  remove_quad(grid, 3, 1, 1);
-  const MeshTopology grid_topology = build_topology(grid);
-  EXPECT_EQ(grid_topology.nonmanifold_vertices, (std::vector<int>{10}));
-  EXPECT_TRUE(unfillable_vertices(grid, grid_topology).empty());
-
-  const Mesh bowtie = make_mesh({{0, 0, 0}, {-1, -1, 0}, {-1, 1, 0}, {1, 1, 0}, {1, -1, 0}},
-                                {{0, 2, 1}, {0, 4, 3}});  // two components
-  EXPECT_EQ(unfillable_vertices(bowtie, build_topology(bowtie)), (std::vector<int>{0}));
-
-  const Mesh fan = make_mesh({{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, -1, 0}, {0.5, 0, 1}},
-                             {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}});  // three faces on (0, 1)
-  EXPECT_EQ(unfillable_vertices(fan, build_topology(fan)), (std::vector<int>{0, 1}));
-}
-
-TEST(Topology, DefectsAreCounted) {
-  Mesh cube = make_cube();
-  EXPECT_FALSE(find_defects(cube, build_topology(cube)).any());
-  cube.triangles.push_back(cube.triangles[3]);                // duplicated
-  cube.positions.push_back(cube.positions[0]);                // a vertex on vertex 0
-  cube.triangles.push_back({0, 1, cube.vertex_count() - 1});  // degenerate, on edge (0, 1)
-  cube = make_mesh(cube.positions, cube.triangles);
-  const MeshDefects defects = find_defects(cube, build_topology(cube));
-  EXPECT_EQ(defects.duplicated_faces, 1);
-  EXPECT_EQ(defects.degenerate_faces, 1);
-  EXPECT_EQ(defects.nonmanifold_edges, 4);  // the duplicate's three edges and (0, 1)
-  EXPECT_EQ(describe(defects).substr(0, 22), "4 non-manifold edges, ");
-  EXPECT_NE(describe(defects).find("1 duplicated face, 1 degenerate face"), std::string::npos)
-      << describe(defects);
 }
 
 // Rows of ../shared/data/stats.tsv: file -> (boundary loop lengths, d_m).

@@ -4,28 +4,45 @@
 
 #include <algorithm>
 #include <atomic>
+#include <exception>
+#include <mutex>
 #include <thread>
 #include <vector>
 
 namespace rangefill {
 
 /// Runs task(i) for i in [0, count) on `threads` threads (at most `count`; 1 runs them in order on
-/// the calling thread). Tasks are handed out in increasing i.
+/// the calling thread). Tasks are handed out in increasing i. When tasks throw, no task is started
+/// after the first throw, the running ones finish, and the exception of the lowest i among those
+/// that threw is rethrown on the calling thread (the same one at any thread count when every task
+/// before it ran).
 template <typename Task>
 void parallel_for(int count, int threads, Task task) {
   threads = std::clamp(threads, 1, std::max(1, count));
-  if (threads == 1) {
-    for (int i = 0; i < count; ++i) task(i);
-    return;
-  }
   std::atomic<int> next{0};
+  std::atomic<bool> failed{false};
+  std::mutex mutex;
+  int failed_index = count;
+  std::exception_ptr failure;
+  auto work = [&] {
+    for (int i = next++; i < count && !failed; i = next++) {
+      try {
+        task(i);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (i < failed_index) {
+          failed_index = i;
+          failure = std::current_exception();
+        }
+        failed = true;
+      }
+    }
+  };
   std::vector<std::thread> workers;
-  for (int t = 0; t < threads; ++t) {
-    workers.emplace_back([&] {
-      for (int i = next++; i < count; i = next++) task(i);
-    });
-  }
+  for (int t = 1; t < threads; ++t) workers.emplace_back(work);
+  work();  // the calling thread is a worker too
   for (std::thread& worker : workers) worker.join();
+  if (failure) std::rethrow_exception(failure);
 }
 
 }  // namespace rangefill

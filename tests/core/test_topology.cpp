@@ -1,0 +1,107 @@
+#include "rangefill/core/topology.h"
+
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "support.h"
+
+namespace rangefill {
+namespace {
+
+using testing::make_cube;
+using testing::make_grid;
+
+// The cube's 12 faces: 18 edges of two faces each, every half-edge paired with the reverse one,
+// one component; find_halfedge follows the faces' orientation.
+TEST(Topology, PairsTheHalfEdgesOfAClosedMesh) {
+  const Mesh cube = make_cube();
+  const MeshTopology topology = build_topology(cube);
+  EXPECT_EQ(topology.edges.size(), 18u);
+  EXPECT_EQ(topology.component_count, 1);
+  EXPECT_EQ(topology.nonmanifold_edge_count, 0);
+  EXPECT_TRUE(topology.nonmanifold_vertices.empty());
+  for (int h = 0; h < 3 * cube.face_count(); ++h) {
+    const int o = topology.opposite[h];
+    ASSERT_GE(o, 0) << h;
+    EXPECT_EQ(topology.opposite[o], h);
+    EXPECT_EQ(topology.halfedge_source(cube, o), topology.halfedge_target(cube, h));
+    EXPECT_EQ(topology.halfedge_edge[o], topology.halfedge_edge[h]);
+  }
+  for (int v = 0; v < cube.vertex_count(); ++v) {
+    EXPECT_GE(topology.faces_of_vertex_end(v) - topology.faces_of_vertex_begin(v), 3) << v;
+  }
+  const int h = find_halfedge(cube, topology, 0, 2);  // face {0, 2, 1}
+  ASSERT_GE(h, 0);
+  EXPECT_EQ(halfedge_face(h), 0);
+  EXPECT_EQ(find_halfedge(cube, topology, 0, 7), -1);
+}
+
+// Two grids side by side are two components; every face knows its own.
+TEST(Topology, CountsComponents) {
+  Mesh two = make_grid(2);
+  const Mesh other = make_grid(2);
+  const int offset = two.vertex_count();
+  for (const Vec3& p : other.positions) two.positions.push_back(p + Vec3(5, 0, 0));
+  for (const Triangle& t : other.triangles) {
+    two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  }
+  two = make_mesh(two.positions, two.triangles);
+  const MeshTopology topology = build_topology(two);
+  EXPECT_EQ(topology.component_count, 2);
+  for (int f = 0; f < two.face_count(); ++f) {
+    EXPECT_EQ(topology.face_component[f],
+              f < 8 ? topology.face_component[0] : topology.face_component[8]);
+  }
+  EXPECT_NE(topology.face_component[0], topology.face_component[8]);
+}
+
+TEST(Topology, MisorientedEdgeIsCounted) {
+  const Mesh mesh = make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, {{0, 1, 2}, {1, 3, 2}});
+  EXPECT_EQ(build_topology(mesh).misoriented_edge_count, 0);
+  const Mesh flipped =
+      make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, {{0, 1, 2}, {1, 2, 3}});
+  const MeshTopology topology = build_topology(flipped);
+  EXPECT_EQ(topology.misoriented_edge_count, 1);
+  EXPECT_TRUE(topology.nonmanifold_vertices.empty());
+}
+
+// Where loops of one component touch at a vertex, fills can join its fans: the vertex is fillable.
+// Where two components touch, or faces meet at a non-manifold edge, it is not.
+TEST(Topology, UnfillableVerticesAreWhereNoFillMakesAManifold) {
+  // A 3x3 grid without its centre quad and its corner quad (2, 2): the hole and the border touch
+  // at vertex 10, one component.
+  Mesh grid = make_grid(3);
+  testing::remove_grid_quad(grid, 3, 2, 2);
+  testing::remove_grid_quad(grid, 3, 1, 1);
+  const MeshTopology grid_topology = build_topology(grid);
+  EXPECT_EQ(grid_topology.nonmanifold_vertices, (std::vector<int>{10}));
+  EXPECT_TRUE(unfillable_vertices(grid, grid_topology).empty());
+
+  const Mesh bowtie = make_mesh({{0, 0, 0}, {-1, -1, 0}, {-1, 1, 0}, {1, 1, 0}, {1, -1, 0}},
+                                {{0, 2, 1}, {0, 4, 3}});  // two components
+  EXPECT_EQ(unfillable_vertices(bowtie, build_topology(bowtie)), (std::vector<int>{0}));
+
+  const Mesh fan = make_mesh({{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, -1, 0}, {0.5, 0, 1}},
+                             {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}});  // three faces on (0, 1)
+  EXPECT_EQ(unfillable_vertices(fan, build_topology(fan)), (std::vector<int>{0, 1}));
+}
+
+TEST(Topology, DefectsAreCounted) {
+  Mesh cube = make_cube();
+  EXPECT_FALSE(find_defects(cube, build_topology(cube)).any());
+  cube.triangles.push_back(cube.triangles[3]);                // duplicated
+  cube.positions.push_back(cube.positions[0]);                // a vertex on vertex 0
+  cube.triangles.push_back({0, 1, cube.vertex_count() - 1});  // degenerate, on edge (0, 1)
+  cube = make_mesh(cube.positions, cube.triangles);
+  const MeshDefects defects = find_defects(cube, build_topology(cube));
+  EXPECT_EQ(defects.duplicated_faces, 1);
+  EXPECT_EQ(defects.degenerate_faces, 1);
+  EXPECT_EQ(defects.nonmanifold_edges, 4);  // the duplicate's three edges and (0, 1)
+  EXPECT_EQ(describe(defects).substr(0, 22), "4 non-manifold edges, ");
+  EXPECT_NE(describe(defects).find("1 duplicated face, 1 degenerate face"), std::string::npos)
+      << describe(defects);
+}
+
+}  // namespace
+}  // namespace rangefill

@@ -1,0 +1,148 @@
+// Depth and mask image files: round trips, errors that name the file, damaged PNGs.
+#include "rangefill/io/depth_io.h"
+
+#include <cstring>
+#include <functional>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include "rangefill/core/errors.h"
+#include "rangefill/io/mesh_io.h"
+#include "support.h"
+
+namespace rangefill {
+namespace {
+
+namespace fs = std::filesystem;
+
+cv::Mat sample_depth(int type) {
+  cv::Mat depth(37, 53, type);
+  cv::randu(depth, 0, type == CV_16UC1 ? 65535 : 9.5);
+  depth(cv::Rect(3, 4, 5, 6)).setTo(0);
+  if (type == CV_32FC1) depth.at<float>(10, 10) = std::numeric_limits<float>::quiet_NaN();
+  return depth;
+}
+
+bool bit_identical(const cv::Mat& a, const cv::Mat& b) {
+  return a.type() == b.type() && a.size() == b.size() &&
+         std::memcmp(a.data, b.data, a.total() * a.elemSize()) == 0;
+}
+
+// 16-bit PNG and TIFF, float TIFF and EXR come back bit for bit (NaN included); the write is atomic
+// (no temporary file left).
+TEST(DepthFiles, RoundTripsBitForBit) {
+  const fs::path dir = testing::temporary_directory("depth-files");
+  for (const char* name : {"a.png", "a.tif", "b.TIFF"}) {
+    const cv::Mat depth = sample_depth(CV_16UC1);
+    write_depth_image(depth, dir / name);
+    EXPECT_TRUE(bit_identical(read_depth_image(dir / name), depth)) << name;
+  }
+  for (const char* name : {"c.tiff", "c.exr"}) {
+    const cv::Mat depth = sample_depth(CV_32FC1);
+    write_depth_image(depth, dir / name);
+    EXPECT_TRUE(bit_identical(read_depth_image(dir / name), depth)) << name;
+  }
+  int files = 0;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++files;
+  EXPECT_EQ(files, 5);
+  fs::remove_all(dir);
+}
+
+std::string message_of(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const Error& error) {
+    return error.what();
+  }
+  return "no exception";
+}
+
+// Unreadable files and images that are not depth give one-line errors naming the file; formats
+// that cannot hold the type are refused before writing.
+TEST(DepthFiles, ClearErrorsForBadFiles) {
+  const fs::path dir = testing::temporary_directory("depth-bad");
+  const std::string missing = (dir / "missing.png").string();
+  EXPECT_THROW(read_depth_image(missing), IoError);
+  EXPECT_EQ(message_of([&] { read_depth_image(missing); }).rfind(missing + ": cannot open", 0), 0u);
+
+  write_file_atomically("not an image at all", dir / "text.png");
+  EXPECT_EQ(message_of([&] { read_depth_image(dir / "text.png"); }),
+            (dir / "text.png").string() + ": not a PNG, TIFF or EXR image");
+  const std::string png16 = [&] {
+    write_depth_image(sample_depth(CV_16UC1), dir / "full.png");
+    return read_file(dir / "full.png");
+  }();
+  write_file_atomically(png16.substr(0, png16.size() / 2), dir / "truncated.png");
+  EXPECT_THROW(read_depth_image(dir / "truncated.png"), InvalidInput);
+
+  cv::imwrite((dir / "gray8.png").string(), cv::Mat(4, 4, CV_8U, cv::Scalar(7)));
+  EXPECT_EQ(message_of([&] { read_depth_image(dir / "gray8.png"); }),
+            (dir / "gray8.png").string() +
+                ": CV_8UC1 is not depth: expected 16-bit unsigned (millimetres) or 32-bit float "
+                "(metres)");
+  cv::imwrite((dir / "rgb.png").string(), cv::Mat(4, 4, CV_16UC3, cv::Scalar(7, 8, 9)));
+  EXPECT_EQ(message_of([&] { read_depth_image(dir / "rgb.png"); }),
+            (dir / "rgb.png").string() + ": has 3 channels; a depth or mask image has one");
+  EXPECT_EQ(cv::countNonZero(read_mask_image(dir / "gray8.png")), 16);
+
+  EXPECT_EQ(message_of([&] { write_depth_image(sample_depth(CV_32FC1), dir / "f.png"); }),
+            (dir / "f.png").string() +
+                ": PNG holds 16-bit depth only; write float depth to .tif or .exr");
+  EXPECT_THROW(write_depth_image(sample_depth(CV_16UC1), dir / "f.exr"), InvalidInput);
+  EXPECT_THROW(write_depth_image(sample_depth(CV_16UC1), dir / "f.jpg"), InvalidInput);
+  EXPECT_THROW(write_depth_image(sample_depth(CV_16UC1), dir / "no-such-dir" / "f.png"), IoError);
+  fs::remove_all(dir);
+}
+
+// A damaged PNG is refused by the PNG check (src/png_check.h) before OpenCV sees it: one line
+// naming the file, and nothing printed by libpng (which, under OpenCV, reports to stderr).
+TEST(DepthFiles, DamagedPngsAreRefusedWithoutLibpngOutput) {
+  const fs::path dir = testing::temporary_directory("depth-png");
+  const cv::Mat depth = sample_depth(CV_16UC1);
+  write_depth_image(depth, dir / "full.png");
+  const std::string png = read_file(dir / "full.png");
+  std::string crc = png;
+  crc[png.size() - 20] ^= 0x40;  // a byte of the last IDAT chunk (IEND takes the last 12)
+  std::string type = png;
+  type[12] = '1';  // IHDR's type
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"truncated.png", png.substr(0, png.size() / 2)},
+      {"crc.png", crc},
+      {"type.png", type},
+      {"no-iend.png", png.substr(0, png.size() - 12)},
+      {"header-only.png", png.substr(0, 33) + png.substr(png.size() - 12)},
+  };
+  for (const auto& [name, bytes] : cases) {
+    SCOPED_TRACE(name);
+    const fs::path path = dir / name;  // a lambda may not capture a structured binding in C++17
+    write_file_atomically(bytes, path);
+    ::testing::internal::CaptureStderr();
+    const std::string message = message_of([&] { read_depth_image(path); });
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+    EXPECT_EQ(message.rfind(path.string() + ": corrupt PNG: ", 0), 0u) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos);
+  }
+  EXPECT_TRUE(bit_identical(read_depth_image(dir / "full.png"), depth));
+  fs::remove_all(dir);
+
+  // The PNG fuzzer's corpus (tests/fuzz/corpus/png, with its findings): each file is read or
+  // refused with one line naming it, silently.
+  const fs::path corpus = fs::path(RANGEFILL_SOURCE_DIR) / "tests" / "fuzz" / "corpus" / "png";
+  int read = 0;
+  for (const fs::directory_entry& entry : fs::directory_iterator(corpus)) {
+    SCOPED_TRACE(entry.path().filename().string());
+    ::testing::internal::CaptureStderr();
+    const std::string message = message_of([&] { read_depth_image(entry.path()); });
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+    read += message == "no exception";
+    if (message != "no exception") {
+      EXPECT_EQ(message.rfind(entry.path().string() + ": ", 0), 0u) << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos);
+    }
+  }
+  EXPECT_EQ(read, 2);  // the 16-bit greyscale ones, interlaced or not
+}
+
+}  // namespace
+}  // namespace rangefill
