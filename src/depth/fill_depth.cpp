@@ -188,7 +188,7 @@ struct HoleOutcome {
 
 // Fills hole `label` of `labels` (connectedComponentsWithStats' labels and `stats`) into `out`,
 // the output image (of the depth's type), at the hole's pixels only.
-HoleOutcome fill_hole(const cv::Mat& z, const cv::Mat& data, const cv::Mat& labels,
+HoleOutcome fill_depth_hole(const cv::Mat& z, const cv::Mat& data, const cv::Mat& labels,
                       const cv::Mat& stats, int label, const Inpainter& inpainter,
                       const DepthFillOptions& options, cv::Mat& out) {
   const cv::Rect box(stats.at<int>(label, cv::CC_STAT_LEFT), stats.at<int>(label, cv::CC_STAT_TOP),
@@ -286,7 +286,7 @@ DepthFillStats fill_depth(cv::InputArray depth_in, cv::InputArray mask_in, cv::O
   std::vector<std::exception_ptr> failures(outcomes.size());
   parallel_for(static_cast<int>(outcomes.size()), options.threads, [&](int i) {
     try {
-      outcomes[i] = fill_hole(z, data, labels, stats, i + 1, *inpainter, options, out);
+      outcomes[i] = fill_depth_hole(z, data, labels, stats, i + 1, *inpainter, options, out);
     } catch (...) {
       failures[i] = std::current_exception();
     }

@@ -117,7 +117,7 @@ __attribute__((target_clones("avx2", "default"))) void accumulate(const RingPixe
 // Eq. 7 at every pixel of the hole. (u, v) = ((col, row) − centre) / scale, the ring's centroid
 // and RMS radius, keep the 6×6 systems well-conditioned at any size; the fit does not depend on
 // them.
-void fill_hole(const cv::Mat& depth, const Hole& hole, double alpha, cv::Mat& result) {
+void fill_image_hole(const cv::Mat& depth, const Hole& hole, double alpha, cv::Mat& result) {
   cv::Point2d centre(0, 0);
   for (const cv::Point& p : hole.ring) centre += cv::Point2d(p);
   centre /= static_cast<double>(hole.ring.size());
@@ -248,7 +248,7 @@ void MlsHeightInpainter::inpaint(cv::InputArray depth_in, cv::InputArray mask_in
       for (const cv::Point& p : hole.pixels) result.at<float>(p) = 0;
       continue;
     }
-    fill_hole(depth, hole, alpha_, result);
+    fill_image_hole(depth, hole, alpha_, result);
   }
 }
 

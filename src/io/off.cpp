@@ -1,6 +1,7 @@
 // OFF (Geomview's Object File Format), ASCII: OFF, COFF, NOFF and CNOFF/NCOFF with '#' comments,
-// one vertex or face per line. Our own parser: the only maintained Debian library that reads OFF is
-// CGAL, too heavy a dependency for I/O.
+// one vertex or face per line. Our own parser: CGAL's reader (CGAL is a dependency of the core) reads
+// into its own mesh types and reports failure as a bool, without the line at fault, and the colour
+// rule below needs the numbers as written.
 //
 // Colour rule. OFF does not say whether colour components are 8-bit integers (0-255) or floats in
 // [0, 1], so it is decided per file, separately for vertex and for face colours: they are 8-bit if

@@ -123,14 +123,17 @@ TEST(OpenCvWorkarounds, TeleaOnFloatImagesIsExact_opencv25404) {
   cv::Mat depth(20, 20, CV_32F, cv::Scalar(0.25)), mask = cv::Mat::zeros(20, 20, CV_8U);
   mask(cv::Rect(6, 7, 6, 5)).setTo(255);
 
-  cv::Mat raw;
-  cv::inpaint(depth, mask, raw, 5, cv::INPAINT_TELEA);
-  EXPECT_GT(max_error_in(raw, 0.25, mask), 1.0) << "OpenCV no longer has bug #25404";
-
   for (const std::string& name : inpainter_names()) {
     cv::Mat out;
     make_inpainter(name)->inpaint(depth, mask, out);
     EXPECT_LE(max_error_in(out, 0.25, mask), 1e-6) << name;
+  }
+
+  // Whether the workaround is still needed: said, not asserted (a fixed OpenCV is no failure).
+  cv::Mat raw;
+  cv::inpaint(depth, mask, raw, 5, cv::INPAINT_TELEA);
+  if (!(max_error_in(raw, 0.25, mask) > 1.0)) {
+    GTEST_SKIP() << "this OpenCV no longer has bug #25404: the CV_16U workaround could go";
   }
 }
 
@@ -155,21 +158,24 @@ TEST(OpenCvWorkarounds, MaskOnTheTopLeftBorderIsRestored_opencv25389) {
     EXPECT_LE(max_error_in(out, 0.25, mask), 1e-4) << name;
   }
 
-  // Raw Navier–Stokes on the float image: reads the masked zeros (0.055 measured).
-  cv::Mat raw;
-  cv::inpaint(depth, mask, raw, 5, cv::INPAINT_NS);
-  EXPECT_GT(max_error_in(raw, 0.25, mask), 0.1) << "OpenCV no longer has bug #25389 (ns)";
-  cv::Mat fine_mask;
+  // The same block in the bottom-right corner comes back right from raw cv::inpaint.
+  cv::Mat raw, fine_mask;
   cv::inpaint(corner_image(CV_32F, 0.25, bottom_right, fine_mask), fine_mask, raw, 5,
               cv::INPAINT_NS);
   EXPECT_LE(max_error_in(raw, 0.25, fine_mask), 1e-6);
-
-  // Raw Telea on CV_16U (where #25404 is only ±2 grey levels): 55603 measured for 60000.
-  cv::inpaint(corner_image(CV_16U, 60000, top_left, mask), mask, raw, 5, cv::INPAINT_TELEA);
-  EXPECT_GT(max_error_in(raw, 60000, mask), 1000) << "OpenCV no longer has bug #25389 (telea)";
   cv::inpaint(corner_image(CV_16U, 60000, bottom_right, fine_mask), fine_mask, raw, 5,
               cv::INPAINT_TELEA);
   EXPECT_LE(max_error_in(raw, 60000, fine_mask), 2);
+
+  // Whether the padding is still needed, said, not asserted: raw Navier–Stokes on the float image
+  // reads the masked zeros (0.055 measured), raw Telea on CV_16U gives 55603 for 60000.
+  cv::inpaint(depth, mask, raw, 5, cv::INPAINT_NS);
+  const bool ns_bug = max_error_in(raw, 0.25, mask) > 0.1;
+  cv::inpaint(corner_image(CV_16U, 60000, top_left, mask), mask, raw, 5, cv::INPAINT_TELEA);
+  const bool telea_bug = max_error_in(raw, 60000, mask) > 1000;
+  if (!ns_bug && !telea_bug) {
+    GTEST_SKIP() << "this OpenCV no longer has bug #25389: the padding could go";
+  }
 }
 
 // A linear ramp (0.02 per column, −0.01 per row) with a disk of radius 7 masked. Telea and
