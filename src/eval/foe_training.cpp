@@ -1,5 +1,8 @@
 #include "rangefill/eval/foe_training.h"
 
+#include "rangefill/inpaint/foe_energy.h"
+#include "rangefill/inpaint/foe_map.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>

@@ -1,6 +1,7 @@
 // "foe": MAP inpainting under a Fields-of-Experts prior (rangefill/foe.h).
 #pragma once
 
+#include "rangefill/inpaint/foe_map.h"
 #include "rangefill/inpaint/foe_model.h"
 #include "rangefill/inpaint/inpainter.h"
 
