@@ -245,22 +245,14 @@ void print_summary(const BenchResults& results, const BenchSummary& summary,
   }
 }
 
-int run_bench(const BenchCommand& command) {
+// The methods to compare: every back-end with every trend, then the baselines.
+std::vector<BenchmarkMethod> bench_methods(const BenchCommand& command) {
   std::vector<std::string> inpainters = split_list(command.inpainters);
   if (inpainters.empty() && command.baselines.empty()) inpainters = inpainter_names();
   for (const std::string& name : inpainters) check_inpainter(name, "--inpainters");
   std::vector<TrendKind> trends;
   for (const std::string& name : split_list(command.trends))
     trends.push_back(trend_from_name(name));
-  PunchOptions punch_options = command.punch;
-  punch_options.shapes.clear();
-  for (const std::string& name : split_list(command.shapes)) {
-    try {
-      punch_options.shapes.push_back(shape_from_name(name));
-    } catch (const InvalidInput& error) {
-      throw UsageError(std::string("--shapes: ") + error.what());
-    }
-  }
   std::vector<BenchmarkMethod> methods;
   for (const std::string& inpainter : inpainters) {
     for (TrendKind trend : trends) {
@@ -283,13 +275,24 @@ int run_bench(const BenchCommand& command) {
     methods.push_back(baseline_method(options));
   }
   if (methods.empty()) throw UsageError("--inpainters, --baselines: no method to run");
-  const std::vector<fs::path> files = mesh_files(command.meshes);
-  if (files.empty()) throw UsageError("--meshes: no mesh files found");
+  return methods;
+}
 
+// Each mesh punched with its own seed; its holes appended to `results`, and for each benchmark
+// hole its mesh and its index there to `hole_of`.
+std::vector<Punched> punch_meshes(const BenchCommand& command, const std::vector<fs::path>& files,
+                                  BenchResults& results,
+                                  std::vector<std::pair<int, int>>& hole_of) {
+  PunchOptions punch_options = command.punch;
+  punch_options.shapes.clear();
+  for (const std::string& name : split_list(command.shapes)) {
+    try {
+      punch_options.shapes.push_back(shape_from_name(name));
+    } catch (const InvalidInput& error) {
+      throw UsageError(std::string("--shapes: ") + error.what());
+    }
+  }
   std::vector<Punched> meshes;
-  BenchResults results;
-  for (const BenchmarkMethod& method : methods) results.methods.push_back(method.name);
-  std::vector<std::pair<int, int>> hole_of;  // per benchmark hole: mesh, hole in it
   for (const fs::path& file : files) {
     Punched mesh;
     mesh.name = file.filename().string();
@@ -307,6 +310,63 @@ int run_bench(const BenchCommand& command) {
     }
     meshes.push_back(std::move(mesh));
   }
+  return meshes;
+}
+
+// --save: each punched mesh, its removed faces and each method's patches.
+void save_meshes(const BenchCommand& command, const std::vector<Punched>& meshes,
+                 const std::vector<BenchmarkMethod>& methods,
+                 const std::vector<std::vector<Mesh>>& patch_parts,
+                 const std::vector<fs::path>& inputs) {
+  fs::create_directories(command.save);
+  const int method_count = static_cast<int>(methods.size());
+  for (size_t i = 0; i < meshes.size(); ++i) {
+    const Punched& mesh = meshes[i];
+    const std::string stem = fs::path(mesh.name).stem().string();
+    std::vector<Mesh> truth;  // the removed faces, each marked with the hole it belongs to
+    for (const PunchedHole& hole : mesh.punched.holes)
+      truth.push_back(extract_faces(mesh.original, hole.removed_faces));
+    const fs::path dir = command.save;
+    write_output(serialize_mesh(mesh.punched.mesh, MeshFormat::ply), dir / (stem + "-punched.ply"),
+                 inputs);
+    write_output(serialize_mesh(marked_union(truth), MeshFormat::ply), dir / (stem + "-truth.ply"),
+                 inputs);
+    for (int k = 0; k < method_count; ++k) {
+      write_output(serialize_mesh(marked_union(patch_parts[i * method_count + k]), MeshFormat::ply),
+                   dir / (stem + "-" + methods[k].name + ".ply"), inputs);
+    }
+  }
+}
+
+// --out: holes.csv, summary.json, tables.md, the plots and report.html.
+void write_report(const BenchCommand& command, const BenchResults& results,
+                  const BenchSummary& summary, const std::string& table,
+                  const std::vector<fs::path>& inputs) {
+  const fs::path dir = command.out;
+  fs::create_directories(dir);
+  json document = summary_json(results, summary);
+  document["command"] = command_line();
+  write_output(table, dir / "holes.csv", inputs);
+  write_output(document.dump(2) + "\n", dir / "summary.json", inputs);
+  write_output(
+      "# rangefill bench\n\n`" + command_line() + "`\n\n" + markdown_tables(results, summary),
+      dir / "tables.md", inputs);
+  write_output(hausdorff_area_svg(results), dir / "hausdorff-vs-area.svg", inputs);
+  write_output(class_ranking_svg(results, summary.area_classes), dir / "ranks-by-area.svg", inputs);
+  write_output(class_ranking_svg(results, surface_classes(summary)), dir / "ranks-by-curvature.svg",
+               inputs);
+  write_output(html_report(results, summary, command_line(), command.tie), dir / "report.html",
+               inputs);
+}
+
+int run_bench(const BenchCommand& command) {
+  const std::vector<BenchmarkMethod> methods = bench_methods(command);
+  const std::vector<fs::path> files = mesh_files(command.meshes);
+  if (files.empty()) throw UsageError("--meshes: no mesh files found");
+  BenchResults results;
+  for (const BenchmarkMethod& method : methods) results.methods.push_back(method.name);
+  std::vector<std::pair<int, int>> hole_of;  // per benchmark hole: mesh, hole in it
+  const std::vector<Punched> meshes = punch_meshes(command, files, results, hole_of);
 
   // One child process per hole and method, in that order.
   const int method_count = static_cast<int>(methods.size());
@@ -343,50 +403,12 @@ int run_bench(const BenchCommand& command) {
     }
   }
   const BenchSummary summary = summarize(results, command.area_classes, command.tie);
-
-  if (!command.save.empty()) {
-    fs::create_directories(command.save);
-    for (size_t i = 0; i < meshes.size(); ++i) {
-      const Punched& mesh = meshes[i];
-      const std::string stem = fs::path(mesh.name).stem().string();
-      std::vector<Mesh> truth;  // the removed faces, each marked with the hole it belongs to
-      for (const PunchedHole& hole : mesh.punched.holes)
-        truth.push_back(extract_faces(mesh.original, hole.removed_faces));
-      const fs::path dir = command.save;
-      write_output(serialize_mesh(mesh.punched.mesh, MeshFormat::ply),
-                   dir / (stem + "-punched.ply"), files);
-      write_output(serialize_mesh(marked_union(truth), MeshFormat::ply),
-                   dir / (stem + "-truth.ply"), files);
-      for (int k = 0; k < method_count; ++k) {
-        write_output(
-            serialize_mesh(marked_union(patch_parts[i * method_count + k]), MeshFormat::ply),
-            dir / (stem + "-" + methods[k].name + ".ply"), files);
-      }
-    }
-  }
+  if (!command.save.empty()) save_meshes(command, meshes, methods, patch_parts, files);
   const std::string table = csv_table(results);
   if (!command.csv.empty()) write_output(table, command.csv, files);
-  const json summary_document = summary_json(results, summary);
-  if (!command.out.empty()) {
-    const fs::path dir = command.out;
-    fs::create_directories(dir);
-    json document = summary_document;
-    document["command"] = command_line();
-    write_output(table, dir / "holes.csv", files);
-    write_output(document.dump(2) + "\n", dir / "summary.json", files);
-    write_output(
-        "# rangefill bench\n\n`" + command_line() + "`\n\n" + markdown_tables(results, summary),
-        dir / "tables.md", files);
-    write_output(hausdorff_area_svg(results), dir / "hausdorff-vs-area.svg", files);
-    write_output(class_ranking_svg(results, summary.area_classes), dir / "ranks-by-area.svg",
-                 files);
-    write_output(class_ranking_svg(results, surface_classes(summary)),
-                 dir / "ranks-by-curvature.svg", files);
-    write_output(html_report(results, summary, command_line(), command.tie), dir / "report.html",
-                 files);
-  }
+  if (!command.out.empty()) write_report(command, results, summary, table, files);
   if (command.json) {
-    print_json(summary_document);
+    print_json(summary_json(results, summary));
   } else {
     print_summary(results, summary, command);
   }

@@ -89,22 +89,8 @@ double milliseconds_of(Run run) {
       .count();
 }
 
-int run_depth_bench(const DepthBenchCommand& command) {
-  std::vector<std::string> backends = split_list(command.inpainters);
-  if (backends.empty()) backends = inpainter_names();
-  const std::vector<std::string> known = inpainter_names();
-  for (const std::string& name : backends) {
-    if (std::find(known.begin(), known.end(), name) == known.end()) {
-      throw UsageError("--inpainters: unknown back-end '" + name + "' (known: " + join(known) +
-                       ")");
-    }
-  }
-  DepthFillOptions fill = command.fill;
-  fill.trend = trend_from_name(command.trend);
-  if (command.meshes.empty() && command.frames.empty()) {
-    throw UsageError("give --meshes, --frames or both");
-  }
-
+// The frames: each mesh rendered from `views` azimuths, then the depth images given.
+std::vector<Frame> bench_frames(const DepthBenchCommand& command) {
   std::vector<Frame> frames;
   const CameraIntrinsics camera;
   for (const fs::path& file : mesh_files(command.meshes)) {
@@ -122,22 +108,97 @@ int run_depth_bench(const DepthBenchCommand& command) {
     if (depth.type() == CV_32FC1) depth.convertTo(depth, CV_16U, 1000);  // NaN → 0
     frames.push_back({"sensor", file.stem().string(), depth});
   }
+  return frames;
+}
 
-  // Methods: fill_depth with each back-end, then cv::inpaint on the 16-bit frame, radius as ours.
-  struct Baseline {
-    std::string name;
-    int flags;
-    bool mask_all_invalid;
-  };
-  const std::vector<Baseline> baselines = {
-      {"cv::inpaint ns, punched mask", cv::INPAINT_NS, false},
-      {"cv::inpaint ns, all invalid masked", cv::INPAINT_NS, true},
-      {"cv::inpaint telea, punched mask", cv::INPAINT_TELEA, false},
-      {"cv::inpaint telea, all invalid masked", cv::INPAINT_TELEA, true},
-  };
+// cv::inpaint on the 16-bit frame, the radius as ours, masking the punched pixels or all invalid.
+struct CvInpaint {
+  std::string name;
+  int flags;
+  bool mask_all_invalid;
+};
+const std::vector<CvInpaint> kCvInpaints = {
+    {"cv::inpaint ns, punched mask", cv::INPAINT_NS, false},
+    {"cv::inpaint ns, all invalid masked", cv::INPAINT_NS, true},
+    {"cv::inpaint telea, punched mask", cv::INPAINT_TELEA, false},
+    {"cv::inpaint telea, all invalid masked", cv::INPAINT_TELEA, true},
+};
+
+// Squared and absolute errors (mm) of `output` over the punched pixels, and those left at 0
+// (counted as fills at 0 mm: cv::inpaint's fills drag towards it).
+struct FrameErrors {
+  double squared = 0, absolute = 0;
+  long long unfilled = 0;
+};
+FrameErrors errors_over(const cv::Mat& output, const cv::Mat& truth, const cv::Mat& punched) {
+  FrameErrors errors;
+  for (int row = 0; row < truth.rows; ++row) {
+    for (int col = 0; col < truth.cols; ++col) {
+      if (!punched.at<std::uint8_t>(row, col)) continue;
+      const int value = output.at<std::uint16_t>(row, col);
+      errors.unfilled += value == 0;
+      const double error = value - truth.at<std::uint16_t>(row, col);
+      errors.squared += error * error;
+      errors.absolute += std::abs(error);
+    }
+  }
+  return errors;
+}
+
+// The table of one dataset, the best and fastest back-ends named.
+void print_dataset(const std::string& dataset, const std::map<std::string, Tally>& by_method,
+                   const std::vector<std::string>& methods, size_t backend_count, int frames,
+                   long long punched, double fraction) {
+  std::printf("%s frames: %d (holes: %.1f%% of the valid pixels, %lld punched pixels)\n",
+              dataset.c_str(), frames, 100 * fraction, punched);
+  std::printf("  %-40s %9s %9s %10s %9s\n", "method", "RMSE mm", "MAE mm", "ms/frame", "left at 0");
+  std::string best_backend, fastest_backend, best_baseline;
+  double best_rmse = INFINITY, fastest_ms = INFINITY, baseline_rmse = INFINITY;
+  for (size_t m = 0; m < methods.size(); ++m) {
+    const Tally& tally = by_method.at(methods[m]);
+    const double rmse = std::sqrt(tally.squared / tally.pixels);
+    const double ms = median(tally.milliseconds);
+    std::printf("  %-40s %9.1f %9.1f %10.1f %9lld\n", methods[m].c_str(), rmse,
+                tally.absolute / tally.pixels, ms, tally.unfilled);
+    if (m < backend_count) {
+      if (rmse < best_rmse) best_rmse = rmse, best_backend = methods[m];
+      if (ms < fastest_ms) fastest_ms = ms, fastest_backend = methods[m];
+    } else if (rmse < baseline_rmse) {
+      baseline_rmse = rmse, best_baseline = methods[m];
+    }
+  }
+  std::printf(
+      "  best: %s, RMSE %.0f%% below the best cv::inpaint (%s); fastest: %s, %.1f ms/frame\n",
+      best_backend.c_str(), 100 * (1 - best_rmse / baseline_rmse), best_baseline.c_str(),
+      fastest_backend.c_str(), fastest_ms);
+}
+
+// The back-ends of --inpainters (all when empty); UsageError on an unknown one.
+std::vector<std::string> bench_backends(const DepthBenchCommand& command) {
+  std::vector<std::string> backends = split_list(command.inpainters);
+  if (backends.empty()) backends = inpainter_names();
+  const std::vector<std::string> known = inpainter_names();
+  for (const std::string& name : backends) {
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      throw UsageError("--inpainters: unknown back-end '" + name + "' (known: " + join(known) +
+                       ")");
+    }
+  }
+  return backends;
+}
+
+int run_depth_bench(const DepthBenchCommand& command) {
+  const std::vector<std::string> backends = bench_backends(command);
+  DepthFillOptions fill = command.fill;
+  fill.trend = trend_from_name(command.trend);
+  if (command.meshes.empty() && command.frames.empty()) {
+    throw UsageError("give --meshes, --frames or both");
+  }
+  const std::vector<Frame> frames = bench_frames(command);
+  // Methods: fill_depth with each back-end, then cv::inpaint.
   std::vector<std::string> methods;
   for (const std::string& name : backends) methods.push_back("fill_depth " + name);
-  for (const Baseline& baseline : baselines) methods.push_back(baseline.name);
+  for (const CvInpaint& baseline : kCvInpaints) methods.push_back(baseline.name);
 
   std::map<std::string, std::map<std::string, Tally>> tallies;  // dataset → method → tally
   std::map<std::string, int> frame_counts;
@@ -170,44 +231,31 @@ int run_depth_bench(const DepthBenchCommand& command) {
         write_depth_image(frame.truth, stem + "-truth.png");
         write_depth_image(input, stem + "-input.png");
       }
-
       for (size_t m = 0; m < methods.size(); ++m) {
         cv::Mat output;
-        double ms = 0;
-        if (m < backends.size()) {
-          DepthFillOptions options = fill;
-          options.inpainter = backends[m];
-          ms = milliseconds_of([&] { fill_depth(input, punched, output, options); });
-        } else {
-          const Baseline& baseline = baselines[m - backends.size()];
-          const cv::Mat& mask = baseline.mask_all_invalid ? all_invalid : punched;
-          ms = milliseconds_of([&] {
-            cv::inpaint(input, mask, output, command.fill.inpainting.radius, baseline.flags);
-          });
-        }
+        DepthFillOptions options = fill;
+        if (m < backends.size()) options.inpainter = backends[m];
+        const double ms = milliseconds_of([&] {
+          if (m < backends.size()) {
+            fill_depth(input, punched, output, options);
+          } else {
+            const CvInpaint& baseline = kCvInpaints[m - backends.size()];
+            cv::inpaint(input, baseline.mask_all_invalid ? all_invalid : punched, output,
+                        command.fill.inpainting.radius, baseline.flags);
+          }
+        });
+        const FrameErrors errors = errors_over(output, frame.truth, punched);
         Tally& tally = tallies[frame.dataset][methods[m]];
         tally.milliseconds.push_back(ms);
-        double squared = 0, absolute = 0;
-        long long unfilled = 0;
-        for (int row = 0; row < input.rows; ++row) {
-          for (int col = 0; col < input.cols; ++col) {
-            if (!punched.at<std::uint8_t>(row, col)) continue;
-            // A pixel left at 0 counts as a fill at 0 mm: cv::inpaint's fills drag it there.
-            const int value = output.at<std::uint16_t>(row, col);
-            unfilled += value == 0;
-            const double error = value - frame.truth.at<std::uint16_t>(row, col);
-            squared += error * error;
-            absolute += std::abs(error);
-          }
-        }
-        tally.squared += squared;
-        tally.absolute += absolute;
+        tally.squared += errors.squared;
+        tally.absolute += errors.absolute;
         tally.pixels += pixels;
-        tally.unfilled += unfilled;
+        tally.unfilled += errors.unfilled;
         if (csv.is_open()) {
           csv << frame.dataset << ',' << frame.name << ',' << pattern << ",\"" << methods[m]
-              << "\"," << pixels << ',' << unfilled << ',' << std::sqrt(squared / pixels) << ','
-              << absolute / pixels << ',' << ms << '\n';
+              << "\"," << pixels << ',' << errors.unfilled << ','
+              << std::sqrt(errors.squared / pixels) << ',' << errors.absolute / pixels << ',' << ms
+              << '\n';
         }
         if (!command.save.empty() && m < backends.size()) {
           write_depth_image(output, stem + "-" + backends[m] + ".png");
@@ -216,32 +264,9 @@ int run_depth_bench(const DepthBenchCommand& command) {
     }
   }
   if (progress) std::fprintf(stderr, "\r\033[K");
-
   for (const auto& [dataset, by_method] : tallies) {
-    std::printf("%s frames: %d (holes: %.1f%% of the valid pixels, %lld punched pixels)\n",
-                dataset.c_str(), frame_counts[dataset], 100 * command.holes.fraction,
-                punched_pixels[dataset]);
-    std::printf("  %-40s %9s %9s %10s %9s\n", "method", "RMSE mm", "MAE mm", "ms/frame",
-                "left at 0");
-    std::string best_backend, fastest_backend, best_baseline;
-    double best_rmse = INFINITY, fastest_ms = INFINITY, baseline_rmse = INFINITY;
-    for (size_t m = 0; m < methods.size(); ++m) {
-      const Tally& tally = by_method.at(methods[m]);
-      const double rmse = std::sqrt(tally.squared / tally.pixels);
-      const double ms = median(tally.milliseconds);
-      std::printf("  %-40s %9.1f %9.1f %10.1f %9lld\n", methods[m].c_str(), rmse,
-                  tally.absolute / tally.pixels, ms, tally.unfilled);
-      if (m < backends.size()) {
-        if (rmse < best_rmse) best_rmse = rmse, best_backend = methods[m];
-        if (ms < fastest_ms) fastest_ms = ms, fastest_backend = methods[m];
-      } else if (rmse < baseline_rmse) {
-        baseline_rmse = rmse, best_baseline = methods[m];
-      }
-    }
-    std::printf(
-        "  best: %s, RMSE %.0f%% below the best cv::inpaint (%s); fastest: %s, %.1f ms/frame\n",
-        best_backend.c_str(), 100 * (1 - best_rmse / baseline_rmse), best_baseline.c_str(),
-        fastest_backend.c_str(), fastest_ms);
+    print_dataset(dataset, by_method, methods, backends.size(), frame_counts[dataset],
+                  punched_pixels[dataset], command.holes.fraction);
   }
   return kOk;
 }

@@ -29,6 +29,20 @@ struct PatchRow {
   std::vector<double> rmse, seconds;  // per back-end
 };
 
+// One row per patch: its mesh, index, masked share, and each back-end's RMSE and seconds.
+std::string csv_rows(const std::vector<std::string>& names, const std::vector<PatchRow>& rows) {
+  std::ostringstream csv;
+  csv << "mesh,patch,masked_share";
+  for (const std::string& name : names) csv << ',' << name << "_rmse," << name << "_s";
+  csv << '\n';
+  for (const PatchRow& row : rows) {
+    csv << row.mesh << ',' << row.patch << ',' << row.masked_share;
+    for (size_t m = 0; m < names.size(); ++m) csv << ',' << row.rmse[m] << ',' << row.seconds[m];
+    csv << '\n';
+  }
+  return csv.str();
+}
+
 int run_patch_bench(const PatchBenchCommand& command) {
   const std::vector<std::string> names = split_list(command.inpainters);
   if (names.empty()) throw UsageError("--inpainters: no back-end given");
@@ -65,18 +79,7 @@ int run_patch_bench(const PatchBenchCommand& command) {
   if (progress) std::fprintf(stderr, "\r\033[K");
   if (rows.empty()) throw UsageError("--meshes: no patches (check --only and the mesh files)");
 
-  if (!command.csv.empty()) {
-    std::ostringstream csv;
-    csv << "mesh,patch,masked_share";
-    for (const std::string& name : names) csv << ',' << name << "_rmse," << name << "_s";
-    csv << '\n';
-    for (const PatchRow& row : rows) {
-      csv << row.mesh << ',' << row.patch << ',' << row.masked_share;
-      for (size_t m = 0; m < names.size(); ++m) csv << ',' << row.rmse[m] << ',' << row.seconds[m];
-      csv << '\n';
-    }
-    write_file_atomically(csv.str(), command.csv);
-  }
+  if (!command.csv.empty()) write_file_atomically(csv_rows(names, rows), command.csv);
 
   // Per back-end: median and mean RMSE, the share of patches it restores best, and the share of
   // patches on which the first back-end beats it (the paired comparison).

@@ -207,7 +207,9 @@ void print_border_note(const RepairResult& result, double border_share) {
             << "; --fill-all fills them\n";
 }
 
-int run_repair(RepairCommand& command) {
+// The arguments checked and turned into options, before any work: outputs that are not the
+// input (nor each other), known formats and names.
+void check_arguments(RepairCommand& command) {
   if (!command.in_place && fs::exists(command.output) &&
       fs::equivalent(command.input, command.output)) {
     throw UsageError(command.output + ": is the input; pass --in-place to overwrite it");
@@ -223,17 +225,25 @@ int run_repair(RepairCommand& command) {
   command.options.trend = trend_from_name(command.trend);
   if (command.fill_all) command.options.border_share = 0;
   command.options.strategies = strategies_from_arguments(command.filler, command.fallback);
+}
+
+// The input mesh; a point cloud meshed first (unless --mesher none, which refuses it).
+Mesh load_input(const RepairCommand& command) {
   const Mesher mesher = mesher_from_name(command.mesher);
   Mesh mesh = load_mesh(command.input);
-  if (mesh.triangles.empty()) {
-    if (mesher == Mesher::none) {
-      throw InvalidInput(command.input +
-                         ": a point cloud without faces (--mesher greedy meshes it)");
-    }
-    mesh = naming_the_input(command.input, [&] { return mesh_point_cloud(mesh); });
-    std::cerr << "rangefill: note: " << command.input << ": meshed " << mesh.vertex_count()
-              << " points into " << mesh.face_count() << " triangles (greedy projection)\n";
+  if (!mesh.triangles.empty()) return mesh;
+  if (mesher == Mesher::none) {
+    throw InvalidInput(command.input + ": a point cloud without faces (--mesher greedy meshes it)");
   }
+  mesh = naming_the_input(command.input, [&] { return mesh_point_cloud(mesh); });
+  std::cerr << "rangefill: note: " << command.input << ": meshed " << mesh.vertex_count()
+            << " points into " << mesh.face_count() << " triangles (greedy projection)\n";
+  return mesh;
+}
+
+int run_repair(RepairCommand& command) {
+  check_arguments(command);
+  const Mesh mesh = load_input(command);
 
   const bool progress = stderr_is_terminal();
   int done = 0;
