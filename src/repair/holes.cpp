@@ -24,56 +24,84 @@ Vec3 vertex_normal(const Mesh& mesh, const MeshTopology& topology, int v) {
 
 }  // namespace
 
-HoleSet find_holes(const Mesh& mesh, const MeshTopology& topology) {
-  HoleSet holes;
-  const int halfedge_count = static_cast<int>(topology.opposite.size());
-  std::vector<char> visited(halfedge_count, 0);
-  std::vector<int> boundary_degree(mesh.vertex_count(), 0);
-  for (int h = 0; h < halfedge_count; ++h) {
-    if (topology.opposite[h] == kBoundary) ++boundary_degree[topology.halfedge_source(mesh, h)];
-  }
-  for (int v = 0; v < mesh.vertex_count(); ++v) {
-    if (boundary_degree[v] > 1) holes.pinched_vertices.push_back(v);
-  }
+namespace {
 
-  // Boundary half-edges leaving each vertex (CSR).
-  std::vector<int> out_offsets(mesh.vertex_count() + 1, 0);
-  for (int v = 0; v < mesh.vertex_count(); ++v)
-    out_offsets[v + 1] = out_offsets[v] + boundary_degree[v];
-  std::vector<int> out_halfedges(out_offsets.back());
-  {
-    std::vector<int> cursor(out_offsets.begin(), out_offsets.end() - 1);
+// The boundary half-edges of a mesh, followed from one to the next round each loop.
+class BoundaryWalk {
+ public:
+  BoundaryWalk(const Mesh& mesh, const MeshTopology& topology)
+      : mesh_(mesh),
+        topology_(topology),
+        visited_(topology.opposite.size(), 0),
+        boundary_degree_(mesh.vertex_count(), 0),
+        out_offsets_(mesh.vertex_count() + 1, 0) {
+    const int halfedge_count = static_cast<int>(topology.opposite.size());
+    for (int h = 0; h < halfedge_count; ++h) {
+      if (topology.opposite[h] == kBoundary) ++boundary_degree_[topology.halfedge_source(mesh, h)];
+    }
+    // Boundary half-edges leaving each vertex (CSR).
+    for (int v = 0; v < mesh.vertex_count(); ++v)
+      out_offsets_[v + 1] = out_offsets_[v] + boundary_degree_[v];
+    out_halfedges_.resize(out_offsets_.back());
+    std::vector<int> cursor(out_offsets_.begin(), out_offsets_.end() - 1);
     for (int h = 0; h < halfedge_count; ++h) {
       if (topology.opposite[h] == kBoundary)
-        out_halfedges[cursor[topology.halfedge_source(mesh, h)]++] = h;
+        out_halfedges_[cursor[topology.halfedge_source(mesh, h)]++] = h;
     }
   }
 
+  // Vertices on more than two boundary edges, ascending.
+  std::vector<int> pinched_vertices() const {
+    std::vector<int> pinched;
+    for (int v = 0; v < mesh_.vertex_count(); ++v) {
+      if (boundary_degree_[v] > 1) pinched.push_back(v);
+    }
+    return pinched;
+  }
+
+  // The half-edges walked from boundary half-edge `start` (not yet walked) until the walk comes
+  // back to it or cannot go on; `closed` tells which.
+  std::vector<int> walk(int start, bool& closed) {
+    std::vector<int> halfedges;
+    int h = start;
+    closed = false;
+    while (h >= 0 && !visited_[h]) {
+      visited_[h] = 1;
+      halfedges.push_back(h);
+      h = next_on_loop(h, start);
+      if (h == start) closed = true;
+    }
+    return halfedges;
+  }
+
+  bool walked(int h) const { return visited_[h]; }
+
+ private:
   // The boundary half-edge that continues the loop after h = a→b. Where several leave b (loops
   // touch at b), the hole on the right of h is the angular gap from b→a counter-clockwise (about
   // the vertex normal) up to the next fan of faces of the same component, whose first edge is the
   // one to take.
-  auto next_on_loop = [&](int h, int start) {
-    const int a = topology.halfedge_source(mesh, h), b = topology.halfedge_target(mesh, h);
+  int next_on_loop(int h, int start) const {
+    const int a = topology_.halfedge_source(mesh_, h), b = topology_.halfedge_target(mesh_, h);
     // A loop stays within the component of its faces.
-    const int component = topology.face_component[halfedge_face(h)];
+    const int component = topology_.face_component[halfedge_face(h)];
     auto available = [&](int candidate) {
-      return (!visited[candidate] || candidate == start) &&
-             topology.face_component[halfedge_face(candidate)] == component;
+      return (!visited_[candidate] || candidate == start) &&
+             topology_.face_component[halfedge_face(candidate)] == component;
     };
-    if (boundary_degree[b] == 1) {
-      const int only = out_halfedges[out_offsets[b]];
+    if (boundary_degree_[b] == 1) {
+      const int only = out_halfedges_[out_offsets_[b]];
       return available(only) ? only : -1;
     }
-    const Vec3 reference = mesh.positions[a] - mesh.positions[b];
-    const Vec3 normal = vertex_normal(mesh, topology, b);
+    const Vec3 reference = mesh_.positions[a] - mesh_.positions[b];
+    const Vec3 normal = vertex_normal(mesh_, topology_, b);
     int best = -1;
     double best_angle = 0;
-    for (int i = out_offsets[b]; i < out_offsets[b + 1]; ++i) {
-      const int candidate = out_halfedges[i];
+    for (int i = out_offsets_[b]; i < out_offsets_[b + 1]; ++i) {
+      const int candidate = out_halfedges_[i];
       if (!available(candidate)) continue;
       const Vec3 direction =
-          mesh.positions[topology.halfedge_target(mesh, candidate)] - mesh.positions[b];
+          mesh_.positions[topology_.halfedge_target(mesh_, candidate)] - mesh_.positions[b];
       const double angle = ccw_angle(reference, direction, normal);
       if (best < 0 || angle < best_angle) {
         best = candidate;
@@ -81,38 +109,50 @@ HoleSet find_holes(const Mesh& mesh, const MeshTopology& topology) {
       }
     }
     return best;
-  };
-
-  for (int start = 0; start < halfedge_count; ++start) {
-    if (topology.opposite[start] != kBoundary || visited[start]) continue;
-    std::vector<int> loop_halfedges;
-    int h = start;
-    bool closed = false;
-    while (h >= 0 && !visited[h]) {
-      visited[h] = 1;
-      loop_halfedges.push_back(h);
-      h = next_on_loop(h, start);
-      if (h == start) closed = true;
-    }
-    if (!closed) {
-      holes.open_boundary_edges += static_cast<int>(loop_halfedges.size());
-      continue;
-    }
-    BoundaryLoop loop;
-    loop.id = static_cast<int>(holes.loops.size());
-    loop.component = topology.face_component[halfedge_face(start)];
-    Vec3 vector_area = Vec3::Zero();
-    for (int e : loop_halfedges) {
-      const Vec3& p = mesh.positions[topology.halfedge_source(mesh, e)];
-      const Vec3& q = mesh.positions[topology.halfedge_target(mesh, e)];
-      loop.vertices.push_back(topology.halfedge_source(mesh, e));
-      loop.perimeter += (q - p).norm();
-      vector_area += p.cross(q);
-    }
-    loop.area = 0.5 * vector_area.norm();
-    holes.loops.push_back(std::move(loop));
   }
 
+  const Mesh& mesh_;
+  const MeshTopology& topology_;
+  std::vector<char> visited_;
+  std::vector<int> boundary_degree_;
+  std::vector<int> out_offsets_, out_halfedges_;
+};
+
+// The loop of a closed walk: its vertices, perimeter and vector area (eq. 1).
+BoundaryLoop loop_of(const Mesh& mesh, const MeshTopology& topology,
+                     const std::vector<int>& halfedges, int id) {
+  BoundaryLoop loop;
+  loop.id = id;
+  loop.component = topology.face_component[halfedge_face(halfedges.front())];
+  Vec3 vector_area = Vec3::Zero();
+  for (int e : halfedges) {
+    const Vec3& p = mesh.positions[topology.halfedge_source(mesh, e)];
+    const Vec3& q = mesh.positions[topology.halfedge_target(mesh, e)];
+    loop.vertices.push_back(topology.halfedge_source(mesh, e));
+    loop.perimeter += (q - p).norm();
+    vector_area += p.cross(q);
+  }
+  loop.area = 0.5 * vector_area.norm();
+  return loop;
+}
+
+}  // namespace
+
+HoleSet find_holes(const Mesh& mesh, const MeshTopology& topology) {
+  HoleSet holes;
+  BoundaryWalk walk(mesh, topology);
+  holes.pinched_vertices = walk.pinched_vertices();
+  for (int start = 0; start < static_cast<int>(topology.opposite.size()); ++start) {
+    if (topology.opposite[start] != kBoundary || walk.walked(start)) continue;
+    bool closed = false;
+    const std::vector<int> halfedges = walk.walk(start, closed);
+    if (closed) {
+      holes.loops.push_back(
+          loop_of(mesh, topology, halfedges, static_cast<int>(holes.loops.size())));
+    } else {
+      holes.open_boundary_edges += static_cast<int>(halfedges.size());
+    }
+  }
   std::vector<double> component_area(topology.component_count, 0.0);
   for (int f = 0; f < mesh.face_count(); ++f) {
     component_area[topology.face_component[f]] += 0.5 * triangle_cross(mesh, f).norm();
