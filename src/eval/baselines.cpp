@@ -74,6 +74,61 @@ Baseline baseline_from_name(const std::string& name) {
   throw InvalidInput("unknown baseline '" + name + "' (expected cgal-fair or cgal-triangulate)");
 }
 
+namespace {
+
+// Appends CGAL's patch of `loop` (its new `vertices` and `faces` in `surface`) to `mesh` with
+// provenance `id`: Surface_mesh appends, so the new vertices and faces are the last ones, in
+// creation order. Returns the vertices added.
+int copy_patch(const SurfaceMesh& surface, std::vector<VertexIndex> vertices,
+               std::vector<FaceIndex> faces, const BoundaryLoop& loop, int id,
+               const std::string& name, Mesh& mesh) {
+  std::sort(vertices.begin(), vertices.end());
+  std::sort(faces.begin(), faces.end());
+  const int first_vertex = mesh.vertex_count();
+  std::vector<Vec3> points;
+  for (VertexIndex v : vertices) {
+    const Kernel::Point_3& p = surface.point(v);
+    points.emplace_back(p.x(), p.y(), p.z());
+  }
+  const std::vector<Rgb> colors = mesh.has_colors() ? boundary_colors(mesh, loop.vertices, points)
+                                                    : std::vector<Rgb>(points.size(), Rgb::Zero());
+  for (size_t i = 0; i < points.size(); ++i) add_vertex(mesh, points[i], id, colors[i]);
+  for (FaceIndex f : faces) {
+    Triangle t;
+    int k = 0;
+    for (VertexIndex v : surface.vertices_around_face(surface.halfedge(f))) {
+      const auto found = std::lower_bound(vertices.begin(), vertices.end(), v);
+      if (found != vertices.end() && *found == v) {
+        t[k++] = first_vertex + static_cast<int>(found - vertices.begin());
+      } else if (static_cast<int>(v) < first_vertex) {
+        t[k++] = static_cast<int>(v);
+      } else {
+        throw ProcessingError(name + ": hole " + std::to_string(id) +
+                              ": a new face uses a vertex CGAL did not report");
+      }
+    }
+    add_face(mesh, t, id);
+  }
+  return static_cast<int>(points.size());
+}
+
+// The loops of the result: each an input loop, not selected or whose fill failed.
+std::vector<OpenLoop> open_input_loops(const Mesh& result, const HoleSet& input,
+                                       const std::vector<int>& selected) {
+  std::map<std::vector<int>, int> input_loop;
+  for (const BoundaryLoop& loop : input.loops) input_loop.emplace(sorted_vertices(loop), loop.id);
+  std::vector<OpenLoop> open;
+  for (const BoundaryLoop& loop : find_holes(result, build_topology(result)).loops) {
+    const int id = input_loop.at(sorted_vertices(loop));
+    const bool was_selected = std::binary_search(selected.begin(), selected.end(), id);
+    open.push_back({loop.id, id, static_cast<int>(loop.vertices.size()), loop.area, loop.area_share,
+                    was_selected ? OpenReason::failed : OpenReason::not_selected});
+  }
+  return open;
+}
+
+}  // namespace
+
 RepairResult fill_holes_cgal(const Mesh& mesh, const BaselineOptions& options) {
   if (options.fairing_continuity < 0 || options.fairing_continuity > 2) {
     throw InvalidInput("cgal baseline: fairing continuity must be 0, 1 or 2");
@@ -120,36 +175,8 @@ RepairResult fill_holes_cgal(const Mesh& mesh, const BaselineOptions& options) {
     }
     report.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    // Surface_mesh appends: the new vertices and faces are the last ones, in creation order.
-    std::sort(vertices.begin(), vertices.end());
-    std::sort(faces.begin(), faces.end());
-    const int first_vertex = result.mesh.vertex_count();
-    std::vector<Vec3> points;
-    for (VertexIndex v : vertices) {
-      const Kernel::Point_3& p = surface.point(v);
-      points.emplace_back(p.x(), p.y(), p.z());
-    }
-    const std::vector<Rgb> colors = result.mesh.has_colors()
-                                        ? boundary_colors(result.mesh, loop.vertices, points)
-                                        : std::vector<Rgb>(points.size(), Rgb::Zero());
-    for (size_t i = 0; i < points.size(); ++i) add_vertex(result.mesh, points[i], id, colors[i]);
-    for (FaceIndex f : faces) {
-      Triangle t;
-      int k = 0;
-      for (VertexIndex v : surface.vertices_around_face(surface.halfedge(f))) {
-        const auto found = std::lower_bound(vertices.begin(), vertices.end(), v);
-        if (found != vertices.end() && *found == v) {
-          t[k++] = first_vertex + static_cast<int>(found - vertices.begin());
-        } else if (static_cast<int>(v) < mesh.vertex_count()) {
-          t[k++] = static_cast<int>(v);
-        } else {
-          throw ProcessingError(name + ": hole " + std::to_string(id) +
-                                ": a new face uses a vertex CGAL did not report");
-        }
-      }
-      add_face(result.mesh, t, id);
-    }
-    report.new_vertices = static_cast<int>(points.size());
+    const int new_vertices = copy_patch(surface, vertices, faces, loop, id, name, result.mesh);
+    report.new_vertices = new_vertices;
     report.new_faces = static_cast<int>(faces.size());
     report.filled = !faces.empty();
     if (!report.filled) report.failure = name + ": no triangulation of the loop found";
@@ -162,16 +189,7 @@ RepairResult fill_holes_cgal(const Mesh& mesh, const BaselineOptions& options) {
     }
     result.holes.push_back(std::move(report));
   }
-  // Each loop of the result is an input loop: one not selected, or one whose fill failed.
-  std::map<std::vector<int>, int> input_loop;
-  for (const BoundaryLoop& loop : loops.loops) input_loop.emplace(sorted_vertices(loop), loop.id);
-  for (const BoundaryLoop& loop : find_holes(result.mesh, build_topology(result.mesh)).loops) {
-    const int id = input_loop.at(sorted_vertices(loop));
-    const bool was_selected = std::binary_search(selected.begin(), selected.end(), id);
-    result.open_loops.push_back({loop.id, id, static_cast<int>(loop.vertices.size()), loop.area,
-                                 loop.area_share,
-                                 was_selected ? OpenReason::failed : OpenReason::not_selected});
-  }
+  result.open_loops = open_input_loops(result.mesh, loops, selected);
   if (result.mesh.has_normals()) {
     const std::vector<Vec3> normals = vertex_normals_from_faces(result.mesh);
     std::copy(normals.begin() + mesh.vertex_count(), normals.end(),

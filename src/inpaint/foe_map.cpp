@@ -27,7 +27,8 @@ double ridge_of(const FoeModel& model) {
   return ridge;
 }
 
-// foe_map's newton method on x.
+// foe_map's newton method on x. One function on purpose: the kind of matrix, whether it was made
+// at x and the last gain are the state of one step rule, which reads best in one place.
 cv::Mat newton_map(const FoeModel& model, cv::Mat x, const cv::Mat& mask,
                    const FoeMapOptions& options) {
   InferenceProblem problem(model, mask);
@@ -326,7 +327,8 @@ class ChebyshevInverse {
 
 // foe_map's lbfgs method on x (some pixel known). Ceres' GradientProblem
 // solver has no preconditioner hook (a change of variables would need a triangular factor of
-// L + tL², a 13-point matrix that alone costs most of the time budget), hence the loop here.
+// L + tL², a 13-point matrix that alone costs most of the time budget), hence the loop here, in
+// one function like newton_map: the two-loop recursion and the line search share its history.
 cv::Mat lbfgs_map(const FoeModel& model, const LaplacianPolynomial& polynomial, cv::Mat x,
                   const cv::Mat& mask, const FoeMapOptions& options) {
   constexpr int kMemory = 10;       // correction pairs kept

@@ -146,6 +146,48 @@ bool is_eight_bit(float normalised) {
   return normalised == static_cast<float>(std::round(normalised * 255.0) * (1.0 / 255.0));
 }
 
+// The v lines' colours into the mesh when every vertex has one (8-bit when any component exceeds
+// 1), else dropped with a warning.
+void take_colours(ObjLines& lines, const std::string& name, ReadResult& result) {
+  Mesh& mesh = result.mesh;
+  const size_t vertex_count = mesh.positions.size();
+  const size_t coloured_vertices = lines.colors.size();
+  if (vertex_count > 0 && coloured_vertices == vertex_count) {
+    const bool eight_bit = lines.max_colour_component > 1;
+    mesh.colors = std::move(lines.colors);
+    bool all_eight_bit = true;
+    for (Rgb& colour : mesh.colors) {
+      if (eight_bit) colour = (colour.cast<double>() * (1.0 / 255.0)).cast<float>();
+      all_eight_bit = all_eight_bit && is_eight_bit(colour[0]) && is_eight_bit(colour[1]) &&
+                      is_eight_bit(colour[2]);
+    }
+    mesh.storage.color = all_eight_bit ? ScalarType::uint8 : ScalarType::float32;
+  } else if (coloured_vertices > 0) {
+    result.warnings.push_back(name + ": vertex colours dropped: only " +
+                              std::to_string(coloured_vertices) + " of " +
+                              std::to_string(vertex_count) + " vertices have one");
+  }
+}
+
+// The normals into the mesh, one per vertex as its face corners pair them (`vertex_normal`), unless
+// `unusable` says why not (then dropped with a warning).
+void take_normals(const ObjLines& lines, const std::vector<int>& vertex_normal,
+                  std::string unusable, const std::string& name, ReadResult& result) {
+  if (lines.normals.empty()) return;
+  if (lines.faces.empty()) unusable = "no face refers to them";
+  if (!unusable.empty()) {
+    result.warnings.push_back(name +
+                              ": normals dropped (rangefill keeps one per vertex): " + unusable);
+    return;
+  }
+  // Vertices in no face get a zero normal, as generated ones do.
+  Mesh& mesh = result.mesh;
+  mesh.normals.assign(mesh.positions.size(), Vec3::Zero());
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    if (vertex_normal[v] >= 0) mesh.normals[v] = lines.normals[vertex_normal[v]];
+  }
+}
+
 }  // namespace
 
 ReadResult parse_obj(std::string_view bytes, const std::string& name) {
@@ -204,36 +246,8 @@ ReadResult parse_obj(std::string_view bytes, const std::string& name) {
   }
   builder.finish();
 
-  if (normal_count > 0) {
-    if (lines.faces.empty()) normals_unusable = "no face refers to them";
-    if (normals_unusable.empty()) {
-      // Vertices in no face get a zero normal, as generated ones do.
-      mesh.normals.assign(vertex_count, Vec3::Zero());
-      for (size_t v = 0; v < vertex_count; ++v) {
-        if (vertex_normal[v] >= 0) mesh.normals[v] = lines.normals[vertex_normal[v]];
-      }
-    } else {
-      result.warnings.push_back(
-          name + ": normals dropped (rangefill keeps one per vertex): " + normals_unusable);
-    }
-  }
-
-  const size_t coloured_vertices = lines.colors.size();
-  if (vertex_count > 0 && coloured_vertices == vertex_count) {
-    const bool eight_bit = lines.max_colour_component > 1;
-    mesh.colors = std::move(lines.colors);
-    bool all_eight_bit = true;
-    for (Rgb& colour : mesh.colors) {
-      if (eight_bit) colour = (colour.cast<double>() * (1.0 / 255.0)).cast<float>();
-      all_eight_bit = all_eight_bit && is_eight_bit(colour[0]) && is_eight_bit(colour[1]) &&
-                      is_eight_bit(colour[2]);
-    }
-    mesh.storage.color = all_eight_bit ? ScalarType::uint8 : ScalarType::float32;
-  } else if (coloured_vertices > 0) {
-    result.warnings.push_back(name + ": vertex colours dropped: only " +
-                              std::to_string(coloured_vertices) + " of " +
-                              std::to_string(vertex_count) + " vertices have one");
-  }
+  take_normals(lines, vertex_normal, normals_unusable, name, result);
+  take_colours(lines, name, result);
   if (lines.texture_coordinates > 0) {
     result.warnings.push_back(name + ": " + std::to_string(lines.texture_coordinates) +
                               " texture coordinates (vt) dropped");

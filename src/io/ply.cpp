@@ -391,8 +391,11 @@ ScalarType real_storage(const PlyElement& element, const std::vector<VertexSlot>
   return single ? ScalarType::float32 : ScalarType::float64;
 }
 
-void read_vertices(const PlyElement& element, BodyReader& body, ReadResult& result,
-                   const std::string& name) {
+// The slot of each vertex property, the mesh's storage types set from them and an extra property
+// made for each that rangefill does not interpret (its index in `extra_index`).
+std::vector<VertexSlot> vertex_slots(const PlyElement& element, BodyReader& body,
+                                     ReadResult& result, const std::string& name,
+                                     std::vector<int>& extra_index) {
   Mesh& mesh = result.mesh;
   std::vector<VertexSlot> slots;
   for (const PlyProperty& property : element.properties) slots.push_back(vertex_slot(property));
@@ -403,7 +406,7 @@ void read_vertices(const PlyElement& element, BodyReader& body, ReadResult& resu
   keep_triple_whole(element, slots, VertexSlot::red, true);
   mesh.storage.position = real_storage(element, slots, VertexSlot::x);
   mesh.storage.normal = real_storage(element, slots, VertexSlot::nx);
-  std::vector<int> extra_index(element.properties.size(), -1);
+  extra_index.assign(element.properties.size(), -1);
   for (size_t i = 0; i < element.properties.size(); ++i) {
     const PlyProperty& property = element.properties[i];
     if (slots[i] == VertexSlot::red) mesh.storage.color = property.type;
@@ -416,6 +419,14 @@ void read_vertices(const PlyElement& element, BodyReader& body, ReadResult& resu
       result.warnings.push_back(name + ": vertex list property '" + property.name + "' ignored");
     }
   }
+  return slots;
+}
+
+void read_vertices(const PlyElement& element, BodyReader& body, ReadResult& result,
+                   const std::string& name) {
+  Mesh& mesh = result.mesh;
+  std::vector<int> extra_index;
+  const std::vector<VertexSlot> slots = vertex_slots(element, body, result, name, extra_index);
   const bool normals = has_slot(slots, VertexSlot::nx) && has_slot(slots, VertexSlot::ny) &&
                        has_slot(slots, VertexSlot::nz);
   const bool colors = has_slot(slots, VertexSlot::red) && has_slot(slots, VertexSlot::green) &&

@@ -110,10 +110,39 @@ bool is_png(std::string_view bytes) {
   return bytes.substr(0, kSignature.size()) == kSignature;
 }
 
+namespace {
+
+[[noreturn]] void corrupt_png(const std::string& name, const std::string& why) {
+  throw InvalidInput(name + ": corrupt PNG: " + why);
+}
+
+// The rows the image data must hold, from a 13-byte IHDR chunk's `data`; throws InvalidInput
+// naming `name` for a header that is invalid, indexed or larger than OpenCV reads.
+std::vector<Row> rows_of_header(std::string_view data, const std::string& name) {
+  const std::uint32_t width = big_endian(data, 0), height = big_endian(data, 4);
+  const int bit_depth = static_cast<unsigned char>(data[8]);
+  const int colour_type = static_cast<unsigned char>(data[9]);
+  const int interlace = static_cast<unsigned char>(data[12]);
+  const int count = channels(colour_type, bit_depth);
+  if (width == 0 || height == 0 || width > 0x7fffffffu || height > 0x7fffffffu || count == 0 ||
+      data[10] != 0 || data[11] != 0 || interlace > 1) {
+    corrupt_png(name, "invalid IHDR chunk");
+  }
+  if (colour_type == 3)
+    corrupt_png(name, "indexed colours (a depth or mask image has one channel)");
+  // OpenCV's own limits (CV_IO_MAX_IMAGE_WIDTH, _HEIGHT, _PIXELS): it reads nothing larger.
+  if (width > (1u << 20) || height > (1u << 20) ||
+      std::uint64_t{width} * height > (std::uint64_t{1} << 30)) {
+    corrupt_png(name, std::to_string(width) + "x" + std::to_string(height) +
+                          " pixels, more than OpenCV reads (2^20 a side, 2^30 in all)");
+  }
+  return image_rows(width, height, count * bit_depth, interlace == 1);
+}
+
+}  // namespace
+
 void check_png(std::string_view bytes, const std::string& name) {
-  auto corrupt = [&](const std::string& why) {
-    throw InvalidInput(name + ": corrupt PNG: " + why);
-  };
+  auto corrupt = [&](const std::string& why) { corrupt_png(name, why); };
   size_t at = kSignature.size();
   bool header = false, ended = false;
   std::vector<Row> rows;
@@ -151,23 +180,7 @@ void check_png(std::string_view bytes, const std::string& name) {
     if (idat_run == 1 && type != "IDAT") idat_run = 2;
     if (!header) {
       if (type != "IHDR" || length != 13) corrupt("does not start with an IHDR chunk");
-      const std::uint32_t width = big_endian(data, 0), height = big_endian(data, 4);
-      const int bit_depth = static_cast<unsigned char>(data[8]);
-      const int colour_type = static_cast<unsigned char>(data[9]);
-      const int interlace = static_cast<unsigned char>(data[12]);
-      const int count = channels(colour_type, bit_depth);
-      if (width == 0 || height == 0 || width > 0x7fffffffu || height > 0x7fffffffu || count == 0 ||
-          data[10] != 0 || data[11] != 0 || interlace > 1) {
-        corrupt("invalid IHDR chunk");
-      }
-      if (colour_type == 3) corrupt("indexed colours (a depth or mask image has one channel)");
-      // OpenCV's own limits (CV_IO_MAX_IMAGE_WIDTH, _HEIGHT, _PIXELS): it reads nothing larger.
-      if (width > (1u << 20) || height > (1u << 20) ||
-          std::uint64_t{width} * height > (std::uint64_t{1} << 30)) {
-        corrupt(std::to_string(width) + "x" + std::to_string(height) +
-                " pixels, more than OpenCV reads (2^20 a side, 2^30 in all)");
-      }
-      checker = RowChecker(image_rows(width, height, count * bit_depth, interlace == 1));
+      checker = RowChecker(rows_of_header(data, name));
       header = true;
     } else if (type == "IDAT") {
       if (inflated || idat_run == 2) corrupt("image data after the end of its stream");

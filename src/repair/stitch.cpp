@@ -52,6 +52,48 @@ bool mesh_has_edge(const Mesh& mesh, const MeshTopology& topology, int a, int b)
   return find_halfedge(mesh, topology, a, b) >= 0 || find_halfedge(mesh, topology, b, a) >= 0;
 }
 
+// T1 without the triangles that reach the boundary `polygon`: they would cross its constraints.
+std::vector<Triangle> triangles_clear_of(const std::vector<Triangle>& grid,
+                                         const std::vector<Vec2>& planar,
+                                         const std::vector<Vec2>& polygon) {
+  const int boundary_size = static_cast<int>(polygon.size());
+  std::vector<Triangle> kept;
+  for (const Triangle& t : grid) {
+    bool crosses = false;
+    for (int k = 0; k < 3 && !crosses; ++k) {
+      const Vec2 &a = planar[t[k]], &b = planar[t[(k + 1) % 3]];
+      for (int i = 0; i < boundary_size && !crosses; ++i) {
+        crosses = segments_touch(a, b, polygon[i], polygon[(i + 1) % boundary_size]);
+      }
+    }
+    if (!crosses) kept.push_back(t);
+  }
+  return kept;
+}
+
+// The fill of `triangles` over fill-vertex ids (the hole's vertices, then every patch point):
+// the points no triangle uses are dropped, the others renumbered in order of first use.
+Fill compact_fill(const BoundaryLoop& hole, const Patch& patch, std::vector<Triangle> triangles) {
+  const int boundary_size = static_cast<int>(hole.vertices.size());
+  Fill fill;
+  fill.boundary = hole.vertices;
+  std::vector<int> new_id(patch.points.size(), -1);
+  for (Triangle& t : triangles) {
+    for (int& id : t) {
+      if (id < boundary_size) continue;
+      int& mapped = new_id[id - boundary_size];
+      if (mapped < 0) {
+        mapped = boundary_size + static_cast<int>(fill.points.size());
+        fill.points.push_back(patch.points[id - boundary_size]);
+        if (!patch.colors.empty()) fill.colors.push_back(patch.colors[id - boundary_size]);
+      }
+      id = mapped;
+    }
+  }
+  fill.triangles = std::move(triangles);
+  return fill;
+}
+
 }  // namespace
 
 std::optional<std::string> fill_defect(const Mesh& mesh, const MeshTopology& topology,
@@ -121,18 +163,7 @@ FillOutcome stitch(const Mesh& mesh, const MeshTopology& topology, const Boundar
   std::vector<Vec2> planar;
   for (const Vec3& p : patch.points) planar.push_back(frame.to_local(p).head<2>());
 
-  // T1 without the triangles that reach the boundary: they would cross its constraints.
-  std::vector<Triangle> kept;
-  for (const Triangle& t : grid) {
-    bool crosses = false;
-    for (int k = 0; k < 3 && !crosses; ++k) {
-      const Vec2 &a = planar[t[k]], &b = planar[t[(k + 1) % 3]];
-      for (int i = 0; i < boundary_size && !crosses; ++i) {
-        crosses = segments_touch(a, b, polygon[i], polygon[(i + 1) % boundary_size]);
-      }
-    }
-    if (!crosses) kept.push_back(t);
-  }
+  const std::vector<Triangle> kept = triangles_clear_of(grid, planar, polygon);
 
   Cdt cdt;
   std::vector<Cdt::Vertex_handle> handles;
@@ -183,22 +214,7 @@ FillOutcome stitch(const Mesh& mesh, const MeshTopology& topology, const Boundar
     }
   }
 
-  Fill fill;
-  fill.boundary = hole.vertices;
-  std::vector<int> new_id(patch.points.size(), -1);
-  for (Triangle& t : triangles) {
-    for (int& id : t) {
-      if (id < boundary_size) continue;
-      int& mapped = new_id[id - boundary_size];
-      if (mapped < 0) {
-        mapped = boundary_size + static_cast<int>(fill.points.size());
-        fill.points.push_back(patch.points[id - boundary_size]);
-        if (!patch.colors.empty()) fill.colors.push_back(patch.colors[id - boundary_size]);
-      }
-      id = mapped;
-    }
-  }
-  fill.triangles = std::move(triangles);
+  const Fill fill = compact_fill(hole, patch, std::move(triangles));
   if (const auto defect = fill_defect(mesh, topology, fill, &frame)) {
     return Refused{Refusal::not_manifold, "stitching: " + *defect};
   }

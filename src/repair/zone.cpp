@@ -38,6 +38,40 @@ std::vector<int> sorted_unique(std::vector<int> values) {
 
 }  // namespace
 
+namespace {
+
+// Adds the faces whose three vertices all joined the zone (the keys of `diffused`).
+void close_slivers(const Mesh& mesh, const MeshTopology& topology,
+                   const std::unordered_map<int, Vec3>& diffused,
+                   std::unordered_set<int>& zone_faces) {
+  for (const auto& [v, normal] : diffused) {
+    for (int i = topology.faces_of_vertex_begin(v); i < topology.faces_of_vertex_end(v); ++i) {
+      const int face = topology.vertex_faces[i];
+      const Triangle& t = mesh.triangles[face];
+      if (diffused.count(t[0]) && diffused.count(t[1]) && diffused.count(t[2])) {
+        zone_faces.insert(face);
+      }
+    }
+  }
+}
+
+// The ids of the loops other than `hole` with a vertex among the zone's (ascending).
+std::vector<int> other_holes_reached(const HoleSet& holes, const BoundaryLoop& hole,
+                                     const std::vector<int>& zone_vertices) {
+  std::vector<int> reached;
+  for (const BoundaryLoop& other : holes.loops) {
+    if (other.id == hole.id) continue;
+    if (std::any_of(other.vertices.begin(), other.vertices.end(), [&](int v) {
+          return std::binary_search(zone_vertices.begin(), zone_vertices.end(), v);
+        })) {
+      reached.push_back(other.id);
+    }
+  }
+  return reached;
+}
+
+}  // namespace
+
 Zone grow_zone(const Mesh& mesh, const MeshTopology& topology, const HoleSet& holes,
                const BoundaryLoop& hole, const std::vector<Vec3>& vertex_normals, double mean_edge,
                const ZoneOptions& options) {
@@ -96,17 +130,7 @@ Zone grow_zone(const Mesh& mesh, const MeshTopology& topology, const HoleSet& ho
     search = sorted_unique(std::move(next_search));
   }
 
-  // Close slivers: faces whose three vertices all joined the zone.
-  for (const auto& [v, normal] : diffused) {
-    for (int i = topology.faces_of_vertex_begin(v); i < topology.faces_of_vertex_end(v); ++i) {
-      const int face = topology.vertex_faces[i];
-      const Triangle& t = mesh.triangles[face];
-      if (diffused.count(t[0]) && diffused.count(t[1]) && diffused.count(t[2])) {
-        zone_faces.insert(face);
-      }
-    }
-  }
-
+  close_slivers(mesh, topology, diffused, zone_faces);
   zone.faces.assign(zone_faces.begin(), zone_faces.end());
   std::sort(zone.faces.begin(), zone.faces.end());
   std::vector<int> vertices;
@@ -114,14 +138,7 @@ Zone grow_zone(const Mesh& mesh, const MeshTopology& topology, const HoleSet& ho
     for (int v : mesh.triangles[face]) vertices.push_back(v);
   }
   zone.vertices = sorted_unique(std::move(vertices));
-
-  for (const BoundaryLoop& other : holes.loops) {
-    if (other.id == hole.id) continue;
-    const bool reached = std::any_of(other.vertices.begin(), other.vertices.end(), [&](int v) {
-      return std::binary_search(zone.vertices.begin(), zone.vertices.end(), v);
-    });
-    if (reached) zone.other_holes.push_back(other.id);
-  }
+  zone.other_holes = other_holes_reached(holes, hole, zone.vertices);
   return zone;
 }
 
