@@ -19,7 +19,7 @@ struct Registration {
   std::function<std::unique_ptr<Inpainter>(const InpainterOptions&)> make;
 };
 
-// Every back-end in filters/, by name.
+// Every back-end of inpaint/, by name.
 const std::vector<Registration>& registry() {
   static const std::vector<Registration> backends = {
       {"telea",

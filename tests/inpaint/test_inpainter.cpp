@@ -1,4 +1,4 @@
-// Inpainting back-ends (inpainter.h, filters/opencv_inpaint.h): the registry, the argument
+// Inpainting back-ends (inpainter.h, opencv_inpaint.h): the registry, the argument
 // checks, known pixels kept bit for bit, and regression tests for the two OpenCV 4.6 bugs the
 // wrapper works around (each test also shows the raw cv::inpaint bug, so that it fails when the
 // workaround goes or when OpenCV fixes the bug and the workaround can go).

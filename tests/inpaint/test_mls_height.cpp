@@ -1,4 +1,4 @@
-// The "mls" back-end (filters/mls_height.h): Wang & Oliveira's moving-least-squares height fit,
+// The "mls" back-end (inpaint/mls_height.h): Wang & Oliveira's moving-least-squares height fit,
 // checked against eq. 7 solved directly, on quadratics it must reproduce, and on the fallbacks.
 #include "rangefill/inpaint/mls_height.h"
 

@@ -14,7 +14,7 @@ namespace rangefill {
 
 /// The back-ends' options fill_depth takes by default: InpainterOptions' own, except that foe
 /// refines Telea's fill by at most 10 steps, stopping earlier when one gains less than 3e-3 of E
-/// (README, depth-bench: lower RMSE than the MAP from the harmonic start, 3–5 times faster).
+/// (why: README, Depth maps).
 InpainterOptions depth_inpainting_defaults();
 
 struct DepthFillOptions {
@@ -26,8 +26,7 @@ struct DepthFillOptions {
   /// Depths z1 < z2 lie on different surfaces when z2 > (1 + discontinuity)·z1.
   double discontinuity = 0.05;
   /// Surface fitted to the valid pixels within `trend_ring` pixels of a hole, removed before the
-  /// back-end and added back (trend.h). None by default: on depth maps the back-ends alone did
-  /// better (README, depth-bench).
+  /// back-end and added back (trend.h). None by default (why: README, Depth benchmark).
   TrendKind trend = TrendKind::none;
   double trend_ring = 3;
   int margin = 5;  // pixels around each hole given to the back-end (telea and ns read `radius`)

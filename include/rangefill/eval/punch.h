@@ -68,8 +68,7 @@ struct PunchResult {
 /// uniform in [min_radius, max_radius]·d_m. A region is kept only if it is a topological disk
 /// (connected, Euler characteristic 1) whose removal adds exactly one boundary loop without a
 /// repeated vertex, and if it stays `separation`·d_m away from the holes already made. Each hole
-/// is classified (CurvatureClass, sharp feature). The remaining vertices keep their order. With the
-/// default shapes and no spread, a seed gives the holes it gave before elongated holes existed.
+/// is classified (CurvatureClass, sharp feature). The remaining vertices keep their order.
 /// Throws InvalidInput for a mesh without vertices or options out of their ranges.
 PunchResult punch_holes(const Mesh& mesh, const PunchOptions& options);
 

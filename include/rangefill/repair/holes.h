@@ -26,10 +26,8 @@ struct BoundaryLoop {
 std::vector<int> sorted_vertices(const BoundaryLoop& loop);
 
 /// Default of RepairOptions::border_share: a loop whose fill would cover at least a fifth of its
-/// component's surface bounds an open surface. Measured (README): holes punched by the mesh kit
-/// into the shared meshes reach 10 % (432 holes, seeds 1–6), the neck openings of the real-holes
-/// scans 7–18 %, borders of shared meshes and scans cut in half by a plane 20–61 % (bunny-bottom's
-/// cut 40 %); a single-view scan's outer border is near 100 %.
+/// component's surface bounds an open surface (the measurements behind it: README, Border or
+/// hole).
 inline constexpr double kBorderShare = 0.2;
 
 /// True when `loop` is taken for the border of an open surface (a single-view scan, a cut part)
