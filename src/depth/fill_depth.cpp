@@ -189,8 +189,8 @@ struct HoleOutcome {
 // Fills hole `label` of `labels` (connectedComponentsWithStats' labels and `stats`) into `out`,
 // the output image (of the depth's type), at the hole's pixels only.
 HoleOutcome fill_depth_hole(const cv::Mat& z, const cv::Mat& data, const cv::Mat& labels,
-                      const cv::Mat& stats, int label, const Inpainter& inpainter,
-                      const DepthFillOptions& options, cv::Mat& out) {
+                            const cv::Mat& stats, int label, const Inpainter& inpainter,
+                            const DepthFillOptions& options, cv::Mat& out) {
   const cv::Rect box(stats.at<int>(label, cv::CC_STAT_LEFT), stats.at<int>(label, cv::CC_STAT_TOP),
                      stats.at<int>(label, cv::CC_STAT_WIDTH),
                      stats.at<int>(label, cv::CC_STAT_HEIGHT));
