@@ -16,6 +16,7 @@ namespace rangefill::cgal_triangles {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
 using CgalTriangle = Kernel::Triangle_3;
+using Segment = Kernel::Segment_3;
 using Primitive = CGAL::AABB_triangle_primitive<Kernel, std::vector<CgalTriangle>::const_iterator>;
 using AabbTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 

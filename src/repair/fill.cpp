@@ -1,5 +1,9 @@
 #include "rangefill/repair/fill.h"
 
+#include <Eigen/Geometry>
+
+#include "rangefill/core/intersection.h"
+
 namespace rangefill {
 
 std::string refusal_text(Refusal refusal) {
@@ -26,6 +30,81 @@ std::string refusal_text(Refusal refusal) {
       return "a stage failed";
   }
   return "";
+}
+
+std::string refusal_name(Refusal refusal) {
+  switch (refusal) {
+    case Refusal::nonmanifold_rim:
+      return "nonmanifold_rim";
+    case Refusal::empty_zone:
+      return "empty_zone";
+    case Refusal::no_plane:
+      return "no_plane";
+    case Refusal::partial_view:
+      return "partial_view";
+    case Refusal::not_manifold:
+      return "not_manifold";
+    case Refusal::intersects:
+      return "intersects";
+    case Refusal::front_stuck:
+      return "front_stuck";
+    case Refusal::no_part:
+      return "no_part";
+    case Refusal::no_triangulation:
+      return "no_triangulation";
+    case Refusal::error:
+      return "error";
+  }
+  return "";
+}
+
+namespace {
+
+// A fill's triangles as corner positions and corner ids (mesh ids on the boundary, -1 for new
+// points), with their bounding boxes.
+struct PlacedTriangles {
+  std::vector<std::array<Vec3, 3>> corners;
+  std::vector<Triangle> ids;
+  std::vector<Eigen::AlignedBox3d> boxes;
+  Eigen::AlignedBox3d all;
+};
+
+PlacedTriangles placed(const Mesh& mesh, const Fill& fill) {
+  const int boundary_size = static_cast<int>(fill.boundary.size());
+  PlacedTriangles result;
+  for (const Triangle& t : fill.triangles) {
+    std::array<Vec3, 3> corners;
+    Triangle ids;
+    Eigen::AlignedBox3d box;
+    for (int k = 0; k < 3; ++k) {
+      const bool on_boundary = t[k] < boundary_size;
+      ids[k] = on_boundary ? fill.boundary[t[k]] : -1;
+      corners[k] = on_boundary ? mesh.positions[ids[k]] : fill.points[t[k] - boundary_size];
+      box.extend(corners[k]);
+    }
+    result.corners.push_back(corners);
+    result.ids.push_back(ids);
+    result.boxes.push_back(box);
+    result.all.extend(box);
+  }
+  return result;
+}
+
+}  // namespace
+
+bool fills_intersect(const Mesh& mesh, const Fill& a, const Fill& b) {
+  const PlacedTriangles first = placed(mesh, a), second = placed(mesh, b);
+  if (!first.all.intersects(second.all)) return false;
+  for (size_t i = 0; i < first.corners.size(); ++i) {
+    if (!first.boxes[i].intersects(second.all)) continue;
+    for (size_t j = 0; j < second.corners.size(); ++j) {
+      if (first.boxes[i].intersects(second.boxes[j]) &&
+          triangles_intersect(first.corners[i], second.corners[j], first.ids[i], second.ids[j])) {
+        return true;
+      }
+    }
+  }
+  return false;
 }
 
 }  // namespace rangefill

@@ -25,46 +25,59 @@ std::string strategy_name(Strategy strategy) {
       return "Liepa";
     case Strategy::least_area:
       return "least area";
+    case Strategy::fairing:
+      return "fairing";
   }
   return "";
 }
 
 std::string filler_name(Filler filler) {
-  return filler == Filler::front ? "front" : "plane";
+  switch (filler) {
+    case Filler::plane:
+      return "plane";
+    case Filler::front:
+      return "front";
+    case Filler::fairing:
+      return "fairing";
+  }
+  return "";
 }
 
 Filler filler_from_name(const std::string& name) {
-  if (name == "plane") return Filler::plane;
-  if (name == "front") return Filler::front;
-  throw InvalidInput("unknown filler '" + name + "' (expected plane or front)");
+  for (Filler filler : {Filler::plane, Filler::front, Filler::fairing}) {
+    if (name == filler_name(filler)) return filler;
+  }
+  throw InvalidInput("unknown filler '" + name + "' (expected plane, front or fairing)");
 }
 
 std::vector<Strategy> strategy_chain(Filler filler, const std::string& fallbacks) {
-  bool front = false, patch = false;
-  if (fallbacks != "none") {
-    size_t start = 0;
-    while (start <= fallbacks.size()) {
-      const size_t end = std::min(fallbacks.find(',', start), fallbacks.size());
-      const std::string item = fallbacks.substr(start, end - start);
-      if (item == "front") {
-        front = true;
-      } else if (item == "least-area") {
-        patch = true;
-      } else {
-        throw InvalidInput("unknown fallback '" + item + "' (expected front, least-area or none)");
-      }
-      start = end + 1;
+  std::vector<Strategy> chain = {filler == Filler::plane   ? Strategy::plane
+                                 : filler == Filler::front ? Strategy::front
+                                                           : Strategy::fairing};
+  const auto add = [&](const std::string& item, std::initializer_list<Strategy> strategies) {
+    if (std::find(chain.begin(), chain.end(), *strategies.begin()) != chain.end()) {
+      throw InvalidInput("fallback '" + item + "' is already in the chain");
     }
+    chain.insert(chain.end(), strategies);
+  };
+  for (size_t start = 0; fallbacks != "none" && start <= fallbacks.size();) {
+    const size_t end = std::min(fallbacks.find(',', start), fallbacks.size());
+    const std::string item = fallbacks.substr(start, end - start);
+    if (item == "front") {
+      add(item, {Strategy::front});
+    } else if (item == "fairing") {
+      add(item, {Strategy::fairing});
+    } else if (item == "least-area") {
+      add(item, {Strategy::liepa, Strategy::least_area});
+    } else {
+      throw InvalidInput("unknown fallback '" + item +
+                         "' (expected fairing, front, least-area or none)");
+    }
+    start = end + 1;
   }
-  std::vector<Strategy> chain;
   if (filler == Filler::plane) {
-    chain.push_back(Strategy::plane);
-    if (front) chain.push_back(Strategy::front);
-    chain.push_back(Strategy::plane_in_part);
-  } else {
-    chain.push_back(Strategy::front);
+    chain.insert(std::find(chain.begin(), chain.end(), Strategy::liepa), Strategy::plane_in_part);
   }
-  if (patch) chain.insert(chain.end(), {Strategy::liepa, Strategy::least_area});
   return chain;
 }
 
@@ -376,6 +389,14 @@ struct HoleWork {
         return fill_by_liepa(surface, hole);
       case Strategy::least_area:
         return fill_by_least_area(surface, hole);
+      case Strategy::fairing: {
+        Clock::time_point start = Clock::now();
+        FillOutcome outcome =
+            checked(surface, fill_by_fairing(surface.mesh, surface.topology, hole,
+                                             surface.mean_edge, options.fairing));
+        report.stages.fairing += lap(start);
+        return outcome;
+      }
     }
     return Refused{};
   }

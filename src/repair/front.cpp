@@ -143,7 +143,7 @@ class Front {
   }
 
   // Whether the triangle over fill vertices (a, b, c) (c may be -1 with position `c_position`)
-  // meets neither the mesh nor an earlier fill triangle, except where they share a vertex.
+  // meets neither the mesh nor an earlier fill triangle beyond the vertices they share.
   bool free_in_space(int a, int b, const Vec3& c_position, int c) const {
     const std::array<Vec3, 3> candidate = {positions_[a], positions_[b], c_position};
     const int boundary_size = static_cast<int>(hole_.vertices.size());
@@ -158,16 +158,13 @@ class Front {
     const double reach = std::max({(candidate[0] - centre).norm(), (candidate[1] - centre).norm(),
                                    (candidate[2] - centre).norm()});
     for (const Triangle& t : triangles_) {
-      if (std::any_of(t.begin(), t.end(), [&](int v) { return v == a || v == b || v == c; })) {
-        continue;
-      }
       const std::array<Vec3, 3> other = {positions_[t[0]], positions_[t[1]], positions_[t[2]]};
       const Vec3 other_centre = (other[0] + other[1] + other[2]) / 3;
       const double other_reach =
           std::max({(other[0] - other_centre).norm(), (other[1] - other_centre).norm(),
                     (other[2] - other_centre).norm()});
       if ((centre - other_centre).norm() > reach + other_reach) continue;
-      if (triangles_intersect(candidate, other)) return false;
+      if (triangles_intersect(candidate, other, {a, b, c}, t)) return false;
     }
     return true;
   }

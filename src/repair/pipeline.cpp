@@ -246,6 +246,43 @@ std::vector<OpenLoop> open_loops_of(const Mesh& mesh, const RepairState& state) 
   return open_loops;
 }
 
+// The fill of reports[i] set aside: it would intersect the fill of hole `other` merged before it
+// in this pass. Its loop is tried again in the next pass, against the merged mesh.
+void defer_fill(const BoundaryLoop& loop, int other, RepairState& state, HoleReport& report) {
+  state.seen.erase(sorted_vertices(loop));
+  report.attempts.push_back(
+      {report.strategy,
+       {Refusal::intersects, "with the fill of hole " + std::to_string(other) + " of its pass"}});
+  report.failure = "hole " + std::to_string(report.id) + ": " + strategy_name(*report.strategy) +
+                   ": its fill would intersect the fill of hole " + std::to_string(other);
+  report.filled = false;
+  report.strategy.reset();
+  report.method.clear();
+  report.new_vertices = report.new_faces = 0;
+}
+
+// Step 3 of a pass: the fills merged in hole order (Section IX), the same at any thread count; a
+// fill that would intersect one merged before it waits for the next pass.
+void merge_pass(const std::vector<const BoundaryLoop*>& loops,
+                const std::vector<std::optional<Fill>>& fills, std::vector<HoleReport>& reports,
+                RepairState& state, RepairResult& result) {
+  std::vector<size_t> merged;
+  for (size_t i = 0; i < loops.size(); ++i) {
+    if (fills[i]) {
+      const auto clash = std::find_if(merged.begin(), merged.end(), [&](size_t j) {
+        return fills_intersect(result.mesh, *fills[i], *fills[j]);  // merging only appends
+      });
+      if (clash == merged.end()) {
+        result.restoration_matrix.push_back(merge_fill(result.mesh, *fills[i], reports[i].id));
+        merged.push_back(i);
+      } else {
+        defer_fill(*loops[i], reports[*clash].id, state, reports[i]);
+      }
+    }
+    result.holes.push_back(std::move(reports[i]));
+  }
+}
+
 }  // namespace
 
 RepairResult repair(const Mesh& input, const RepairOptions& options) {
@@ -280,11 +317,7 @@ RepairResult repair(const Mesh& input, const RepairOptions& options) {
     std::vector<HoleReport> reports = reports_for(chosen, pass, state);
     const std::vector<std::optional<Fill>> fills =
         fill_pass(surface, chosen, *inpainter, options, pass == options.passes - 1, state, reports);
-    // Step 3: the fills merged in hole order (Section IX), the same at any thread count.
-    for (size_t i = 0; i < chosen.size(); ++i) {
-      if (fills[i]) result.restoration_matrix.push_back(merge_fill(mesh, *fills[i], reports[i].id));
-      result.holes.push_back(std::move(reports[i]));
-    }
+    merge_pass(chosen, fills, reports, state, result);
     state.next_id += static_cast<int>(surface.holes.loops.size());
   }
   result.open_loops = open_loops_of(mesh, state);

@@ -94,6 +94,12 @@ nlohmann::json report_json(const RepairCommand& command, const RepairResult& res
                            double seconds) {
   nlohmann::json holes = nlohmann::json::array();
   for (const HoleReport& hole : result.holes) {
+    nlohmann::json attempts = nlohmann::json::array();
+    for (const Attempt& attempt : hole.attempts) {
+      attempts.push_back({{"strategy", attempt.strategy ? strategy_name(*attempt.strategy) : ""},
+                          {"refusal", refusal_name(attempt.refused.refusal)},
+                          {"detail", attempt.refused.detail}});
+    }
     holes.push_back({{"id", hole.id},
                      {"pass", hole.pass},
                      {"loop", hole.loop},
@@ -115,11 +121,13 @@ nlohmann::json report_json(const RepairCommand& command, const RepairResult& res
                        {"inpainting", hole.stages.inpainting},
                        {"stitching", hole.stages.stitching},
                        {"checking", hole.stages.checking},
-                       {"front", hole.stages.front}}},
+                       {"front", hole.stages.front},
+                       {"fairing", hole.stages.fairing}}},
                      {"method", hole.method},
                      {"other_holes", hole.other_holes},
                      {"filled", hole.filled},
                      {"rim_support", hole.rim_support},
+                     {"attempts", attempts},
                      {"failure", hole.failure}});
   }
   nlohmann::json open_loops = nlohmann::json::array();
@@ -314,13 +322,14 @@ void add_repair_command(CLI::App& app, Runner& runner) {
   sub->add_option("-o,--output", command->output, "Repaired mesh (format from the extension)")
       ->required();
   sub->add_option("--filler", command->filler,
-                  "plane: range images (Pérez et al.); front: advancing front (Tekumalla & Cohen)")
+                  "plane: range images (Pérez et al.); front: advancing front (Tekumalla & Cohen); "
+                  "fairing: Liepa's patch refined and faired (CGAL)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"plane", "front"}));
-  sub->add_option(
-         "--fallback", command->fallback,
-         "What takes a hole the filler cannot fill: front, least-area (a patch of its loop "
-         "without new vertices: Liepa's weight, else least area), both (in that order), or none")
+      ->check(CLI::IsMember({"plane", "front", "fairing"}));
+  sub->add_option("--fallback", command->fallback,
+                  "What takes a hole the filler cannot fill, tried in the order listed: fairing, "
+                  "front, least-area (a patch of its loop without new vertices: Liepa's weight, "
+                  "else least area), or none")
       ->capture_default_str();
   sub->add_option("--mesher", command->mesher,
                   "For a point cloud (points, no faces): greedy (PCL's greedy projection, "

@@ -19,8 +19,11 @@ class IntersectionIndex {
   IntersectionIndex(IntersectionIndex&&) noexcept;
   IntersectionIndex& operator=(IntersectionIndex&&) noexcept;
 
-  /// Faces that intersect the triangle (a, b, c), leaving out those that share a vertex with
-  /// `corners` (mesh vertex ids of the triangle's corners; -1 for a corner not in the mesh).
+  /// Faces that intersect the triangle (a, b, c) other than where they share vertices with
+  /// `corners` (mesh vertex ids of the triangle's corners; -1 for a corner not in the mesh), as
+  /// CGAL's self_intersections decides: a face sharing one vertex intersects when an edge of one
+  /// opposite that vertex crosses the other; sharing an edge, when the two are coplanar and folded
+  /// onto each other; sharing all three, always. A degenerate triangle meets nothing.
   std::vector<int> intersecting_faces(const Vec3& a, const Vec3& b, const Vec3& c,
                                       const Triangle& corners) const;
 
@@ -29,11 +32,14 @@ class IntersectionIndex {
   std::unique_ptr<Tree> tree_;
 };
 
-/// Whether two triangles share a point (exact predicates, CGAL). Degenerate triangles meet nothing.
-bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b);
+/// Whether two triangles intersect beyond the vertices they share, as
+/// IntersectionIndex::intersecting_faces decides; `ids_a`, `ids_b` name their corners (-1: a
+/// corner no other triangle has). Degenerate triangles meet nothing.
+bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b,
+                         const Triangle& ids_a = {-1, -1, -1}, const Triangle& ids_b = {-1, -1, -1});
 
-/// Pairs (f, g) with f in `faces` and g any face of the mesh, not sharing a vertex, whose triangles
-/// intersect. Each unordered pair is counted once.
+/// Pairs (f, g) with f in `faces` and g any other face of the mesh that intersect beyond their
+/// shared vertices (IntersectionIndex::intersecting_faces). Each unordered pair is counted once.
 int count_self_intersections(const Mesh& mesh, const std::vector<int>& faces);
 
 }  // namespace rangefill

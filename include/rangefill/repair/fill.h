@@ -35,6 +35,9 @@ enum class Refusal {
 /// The refusal in words, e.g. "the fill would intersect the surface or itself".
 std::string refusal_text(Refusal refusal);
 
+/// The enumerator's name, for machine-readable reports: "intersects", "front_stuck", ...
+std::string refusal_name(Refusal refusal);
+
 /// A refusal and what it is about (one line; may be empty).
 struct Refused {
   Refusal refusal = Refusal::error;
@@ -43,5 +46,10 @@ struct Refused {
 
 /// A fill, or why there is none.
 using FillOutcome = std::variant<Fill, Refused>;
+
+/// Whether two fills of holes of `mesh` intersect beyond the mesh vertices they share (exact
+/// predicates, core/intersection.h). Fills of one pass are each checked against the mesh, not
+/// against each other: this is that check.
+bool fills_intersect(const Mesh& mesh, const Fill& a, const Fill& b);
 
 }  // namespace rangefill

@@ -16,6 +16,7 @@
 #include "rangefill/core/topology.h"
 #include "rangefill/inpaint/inpainter.h"
 #include "rangefill/repair/back_projection.h"
+#include "rangefill/repair/fairing.h"
 #include "rangefill/repair/fill.h"
 #include "rangefill/repair/front.h"
 #include "rangefill/repair/holes.h"
@@ -34,26 +35,28 @@ enum class Strategy {
   plane_in_part,  // VI-C: a part of a complex hole on planes of its own; the rest is a new hole
   liepa,          // a patch of the loop without new vertices: Liepa's weight (dihedral, area)
   least_area,     // a patch of the loop without new vertices of least area, avoiding mesh chords
+  fairing,        // Liepa's patch refined, remeshed to d_m and faired (fairing.h)
 };
 
-/// "plane", "front", "plane, in part", "Liepa", "least area".
+/// "plane", "front", "plane, in part", "Liepa", "least area", "fairing".
 std::string strategy_name(Strategy strategy);
 
-/// What fills a hole first: range images on projection planes (the Pérez pipeline), or the
-/// advancing front.
-enum class Filler { plane, front };
+/// What fills a hole first: range images on projection planes (the Pérez pipeline), the advancing
+/// front, or the faired patch.
+enum class Filler { plane, front, fairing };
 
-/// "plane", "front"; filler_from_name throws InvalidInput on another name.
+/// "plane", "front", "fairing"; filler_from_name throws InvalidInput on another name.
 std::string filler_name(Filler filler);
 Filler filler_from_name(const std::string& name);
 
 /// The fallbacks of the default chain.
 inline constexpr const char* kDefaultFallbacks = "front,least-area";
 
-/// The chain of a filler and its fallbacks, a comma-separated list of "front" (the advancing
-/// front) and "least-area" (a patch of the loop: Liepa's weight, else least area), or "none". With
-/// the plane filler the parts of a complex hole (VI-C) come after the front and before the
-/// patches. Throws InvalidInput on an unknown fallback.
+/// The chain of a filler and its fallbacks, tried in the order listed: a comma-separated list of
+/// "fairing" (the faired patch), "front" (the advancing front) and "least-area" (a patch of the
+/// loop: Liepa's weight, else least area), or "none". With the plane filler the parts of a complex
+/// hole (VI-C) come before the loop patches, else last. Throws InvalidInput on an unknown or
+/// repeated fallback, or on the filler among its own fallbacks.
 std::vector<Strategy> strategy_chain(Filler filler, const std::string& fallbacks);
 
 /// One refusal met on the way: of a strategy, or (strategy empty) of the hole before any.
@@ -87,6 +90,7 @@ struct HoleReport {
     double stitching = 0;         // back_project, triangulate_grid, stitch
     double checking = 0;          // the intersection test of the fill
     double front = 0;             // the advancing front, its checks included
+    double fairing = 0;           // the faired patch, its checks included
   } stages;
   std::vector<int> other_holes;  // other loops the zone reached
   bool filled = false;
@@ -108,6 +112,7 @@ struct HoleImages {
 struct FillOptions {
   std::vector<Strategy> strategies = strategy_chain(Filler::plane, kDefaultFallbacks);
   FrontOptions front;
+  FairingOptions fairing;
   MlsOptions mls;
   std::string inpainter = "foe";  // the depth-trained FoE: best on the benchmark (README)
   InpainterOptions inpainting;
