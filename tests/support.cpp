@@ -189,6 +189,12 @@ double azimuth_degrees(const Vec3& p) {
   return angle < 0 ? angle + 360 : angle;
 }
 
+RepairOptions paper_chain() {
+  RepairOptions options;
+  options.strategies = strategy_chain(Filler::plane, "front,least-area");
+  return options;
+}
+
 Mesh make_box(int n) {
   const Mesh grid = make_grid(n);
   // Grid (u, v) onto each side; each map turns the grid's +z into the side's outward normal.

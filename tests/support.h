@@ -8,6 +8,7 @@
 
 #include "rangefill/core/mesh.h"
 #include "rangefill/repair/holes.h"
+#include "rangefill/repair/pipeline.h"
 #include "rangefill/repair/zone.h"
 
 namespace rangefill::testing {
@@ -21,6 +22,11 @@ std::filesystem::path temporary_directory(const std::string& stem);
 /// The float nearest to each coordinate, back in double. Out of line on purpose: GCC 12 at -O2/-O3
 /// was seen to vectorise `v.cast<float>().cast<double>()` into a no-op for some components.
 Vec3 round_to_float(const Vec3& v);
+
+/// Repair options whose chain is the Pérez pipeline's: planes first, then the advancing front, the
+/// parts of a complex hole and the loop's patches (the default chain before the faired patch led
+/// it). Tests of the image path and of the back-ends use it.
+RepairOptions paper_chain();
 
 /// The unit cube [0,1]³ as 12 outward-facing triangles on 8 vertices.
 Mesh make_cube();

@@ -2,6 +2,7 @@
 #include "rangefill/repair/fairing.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 #include <map>
 #include <set>
@@ -11,6 +12,7 @@
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/Euler_operations.h>
 
 #include "rangefill/core/errors.h"
 
@@ -120,9 +122,55 @@ bool remesh_and_fair(SurfaceMesh& surface, size_t original_faces, size_t origina
   for (VertexIndex v : surface.vertices()) {
     if (static_cast<size_t>(v) >= original_vertices) inner.push_back(v);
   }
-  return pmp::fair(surface, inner,
-                   CGAL::parameters::fairing_continuity(
-                       static_cast<unsigned int>(options.continuity)));
+  return pmp::fair(
+      surface, inner,
+      CGAL::parameters::fairing_continuity(static_cast<unsigned int>(options.continuity)));
+}
+
+// The angle at corner p of the triangle (p, q, r), in radians.
+double corner_angle(const Kernel::Point_3& p, const Kernel::Point_3& q, const Kernel::Point_3& r) {
+  const Kernel::Vector_3 u = q - p, v = r - p;
+  return std::atan2(std::sqrt(CGAL::cross_product(u, v).squared_length()), u * v);
+}
+
+// The smallest angle of the triangle (p, q, r).
+double smallest_angle(const Kernel::Point_3& p, const Kernel::Point_3& q,
+                      const Kernel::Point_3& r) {
+  return std::min({corner_angle(p, q, r), corner_angle(q, r, p), corner_angle(r, p, q)});
+}
+
+// Lawson's flips inside the patch (faces from `original_faces` on): an inner edge is flipped when
+// that raises the smaller of the two triangles' smallest angles, the two faces bend by less than
+// 60° (the surface keeps its shape) and the new edge does not exist yet. Slivers that remeshing
+// leaves along the loop (an ear over two nearly collinear loop edges) go this way.
+void flip_to_max_min_angle(SurfaceMesh& surface, size_t original_faces) {
+  const auto in_patch = [&](FaceIndex f) {
+    return f != SurfaceMesh::null_face() && static_cast<size_t>(f) >= original_faces;
+  };
+  constexpr double kMinBendCosine = 0.5;
+  for (int sweep = 0; sweep < 10; ++sweep) {
+    bool flipped = false;
+    for (auto edge : surface.edges()) {
+      const auto h = surface.halfedge(edge), o = surface.opposite(h);
+      if (!in_patch(surface.face(h)) || !in_patch(surface.face(o))) continue;
+      const VertexIndex a = surface.source(h), b = surface.target(h);
+      const VertexIndex c = surface.target(surface.next(h)), d = surface.target(surface.next(o));
+      if (surface.halfedge(c, d) != SurfaceMesh::null_halfedge()) continue;
+      const auto &pa = surface.point(a), &pb = surface.point(b);
+      const auto &pc = surface.point(c), &pd = surface.point(d);
+      // Faces (a, b, c) and (b, a, d) become (a, d, c) and (d, b, c).
+      const double before = std::min(smallest_angle(pa, pb, pc), smallest_angle(pb, pa, pd));
+      const double after = std::min(smallest_angle(pa, pd, pc), smallest_angle(pd, pb, pc));
+      if (after <= before + 1e-9) continue;
+      const auto n1 = CGAL::unit_normal(pa, pb, pc), n2 = CGAL::unit_normal(pb, pa, pd);
+      if (n1 * n2 < kMinBendCosine) continue;
+      const auto m1 = CGAL::normal(pa, pd, pc), m2 = CGAL::normal(pd, pb, pc);
+      if (m1 * n1 <= 0 || m1 * n2 <= 0 || m2 * n1 <= 0 || m2 * n2 <= 0) continue;
+      CGAL::Euler::flip_edge(h, surface);
+      flipped = true;
+    }
+    if (!flipped) break;
+  }
 }
 
 }  // namespace
@@ -161,6 +209,7 @@ FillOutcome fill_by_fairing(const Mesh& mesh, const MeshTopology& topology,
       !remesh_and_fair(*surface, original_faces, global.size(), mean_edge, options)) {
     return Refused{Refusal::error, "the fairing of the remeshed patch has no solution"};
   }
+  flip_to_max_min_angle(*surface, original_faces);
   return patch_as_fill(*surface, original_faces, global, hole);
 }
 

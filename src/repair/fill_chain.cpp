@@ -54,28 +54,29 @@ std::vector<Strategy> strategy_chain(Filler filler, const std::string& fallbacks
   std::vector<Strategy> chain = {filler == Filler::plane   ? Strategy::plane
                                  : filler == Filler::front ? Strategy::front
                                                            : Strategy::fairing};
-  const auto add = [&](const std::string& item, std::initializer_list<Strategy> strategies) {
-    if (std::find(chain.begin(), chain.end(), *strategies.begin()) != chain.end()) {
-      throw InvalidInput("fallback '" + item + "' is already in the chain");
+  const auto add = [&](std::initializer_list<Strategy> strategies) {  // each strategy once
+    if (std::find(chain.begin(), chain.end(), *strategies.begin()) == chain.end()) {
+      chain.insert(chain.end(), strategies);
     }
-    chain.insert(chain.end(), strategies);
   };
   for (size_t start = 0; fallbacks != "none" && start <= fallbacks.size();) {
     const size_t end = std::min(fallbacks.find(',', start), fallbacks.size());
     const std::string item = fallbacks.substr(start, end - start);
-    if (item == "front") {
-      add(item, {Strategy::front});
+    if (item == "plane") {
+      add({Strategy::plane});
+    } else if (item == "front") {
+      add({Strategy::front});
     } else if (item == "fairing") {
-      add(item, {Strategy::fairing});
+      add({Strategy::fairing});
     } else if (item == "least-area") {
-      add(item, {Strategy::liepa, Strategy::least_area});
+      add({Strategy::liepa, Strategy::least_area});
     } else {
       throw InvalidInput("unknown fallback '" + item +
-                         "' (expected fairing, front, least-area or none)");
+                         "' (expected fairing, plane, front, least-area or none)");
     }
     start = end + 1;
   }
-  if (filler == Filler::plane) {
+  if (std::find(chain.begin(), chain.end(), Strategy::plane) != chain.end()) {
     chain.insert(std::find(chain.begin(), chain.end(), Strategy::liepa), Strategy::plane_in_part);
   }
   return chain;
@@ -352,6 +353,21 @@ FillOutcome fill_by_least_area(const SurfaceContext& surface, const BoundaryLoop
                     triangulate_loop_least_area(loop_positions(surface.mesh, hole), forbidden));
 }
 
+// The faired patch of the options' continuity, else of a lower one: a higher order continues the
+// surroundings' curvature further and may overshoot into the surface where a thin part turns (a
+// horn, an ear). The first refusal is the one kept.
+FillOutcome fill_by_fairing_descending(const SurfaceContext& surface, const BoundaryLoop& hole,
+                                       FairingOptions options) {
+  std::optional<Refused> first;
+  for (; options.continuity >= 0; --options.continuity) {
+    FillOutcome outcome = checked(
+        surface, fill_by_fairing(surface.mesh, surface.topology, hole, surface.mean_edge, options));
+    if (std::holds_alternative<Fill>(outcome)) return outcome;
+    if (!first) first = std::get<Refused>(std::move(outcome));
+  }
+  return *first;
+}
+
 // What one hole's strategies share: its zone, and the planes, searched when first needed.
 struct HoleWork {
   const SurfaceContext& surface;
@@ -391,9 +407,7 @@ struct HoleWork {
         return fill_by_least_area(surface, hole);
       case Strategy::fairing: {
         Clock::time_point start = Clock::now();
-        FillOutcome outcome =
-            checked(surface, fill_by_fairing(surface.mesh, surface.topology, hole,
-                                             surface.mean_edge, options.fairing));
+        FillOutcome outcome = fill_by_fairing_descending(surface, hole, options.fairing);
         report.stages.fairing += lap(start);
         return outcome;
       }

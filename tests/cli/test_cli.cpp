@@ -440,16 +440,17 @@ TEST(Cli, DepthBenchMeasuresABackEnd) {
   fs::remove_all(dir);
 }
 
-// `rangefill bench` on a sphere with two back-ends and a baseline, each hole and method in a
-// process of its own: the summary as JSON; in --out a CSV row per hole and method, the summary, the
-// tables, three plots and the report with each hole's images; the same numbers at one and two
-// threads; a timeout fails every method on every hole, and the run still ends with its tables.
+// `rangefill bench` on a sphere with two back-ends (on planes) and a baseline, each hole and method
+// in a process of its own: the summary as JSON; in --out a CSV row per hole and method, the
+// summary, the tables, three plots and the report with each hole's images; the same numbers at one
+// and two threads; a timeout fails every method on every hole, and the run still ends with its
+// tables.
 TEST(Cli, BenchComparesMethodsAndWritesItsReport) {
   const fs::path dir = testing::temporary_directory("cli-bench");
   write_mesh(testing::make_sphere(16), dir / "sphere.ply");
   const std::string common = "bench --meshes " + (dir / "sphere.ply").string() +
                              " --holes-per-mesh 3 --seed 4 --max-radius 6 --inpainters "
-                             "harmonic,ns --baselines cgal-triangulate --json";
+                             "harmonic,ns --filler plane --baselines cgal-triangulate --json";
   const Outcome one = run(common + " --out " + (dir / "one").string());
   ASSERT_EQ(one.exit_code, 0) << one.err;
   nlohmann::json summary = nlohmann::json::parse(one.out);

@@ -17,7 +17,7 @@ Mesh crossing_pair() {
 }
 
 // The crossing pair counts once, whichever of its faces are queried; a closed cube and a closed
-// sphere count none (their neighbouring faces share vertices and are left out).
+// sphere count none (their neighbouring faces meet only where they share vertices).
 TEST(CountSelfIntersections, CountsEachCrossingPairOnce) {
   const Mesh pair = crossing_pair();
   EXPECT_EQ(count_self_intersections(pair, {0, 1}), 1);
@@ -51,22 +51,37 @@ TEST(TrianglesIntersect, SharedPointsCount) {
   EXPECT_FALSE(triangles_intersect(flat, {Vec3(-2, 0.5, 0), Vec3(0, 0.5, 0), Vec3(2, 0.5, 0)}));
 }
 
-// The index finds the faces a triangle meets, leaving out those that share a listed corner.
-TEST(IntersectionIndex, SkipsFacesSharingAListedCorner) {
-  Mesh mesh = crossing_pair();
-  mesh.positions.push_back({0, -10, 0});  // face 2 beside face 0, sharing its vertices 0 and 1
-  mesh = make_mesh(mesh.positions, {{0, 1, 2}, {3, 4, 5}, {0, 6, 1}});
+// The index finds the faces a triangle meets beyond the corners it shares with them, as CGAL's
+// self_intersections decides: sharing a vertex, only an opposite edge crossing counts; sharing an
+// edge, only a fold onto the face; sharing all three corners, always.
+TEST(IntersectionIndex, CountsWhatMeetsBeyondSharedCorners) {
+  const Mesh mesh = make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}});
   const IntersectionIndex index(mesh);
-  // The query is face 1 itself: it meets faces 0 and 1, not face 2.
-  const Vec3 a(0, 0.2, -1), b(0, 0.2, 1), c(0, 0.5, 0.2);
-  EXPECT_EQ(index.intersecting_faces(a, b, c, {-1, -1, -1}), std::vector<int>({0, 1}));
-  EXPECT_EQ(index.intersecting_faces(a, b, c, {3, -1, -1}), std::vector<int>({0}));
-  EXPECT_EQ(index.intersecting_faces(a, b, c, {-1, 0, -1}), std::vector<int>({1}));
-  EXPECT_EQ(index.intersecting_faces(a, b, c, {3, 2, -1}), std::vector<int>{});
-  EXPECT_EQ(index.intersecting_faces(a, b, c, {6, -1, 5}), std::vector<int>({0}));
+  const Vec3 o(0, 0, 0), x(1, 0, 0), y(0, 1, 0);
+  const std::vector<int> face = {0}, none = {};
+  // Sharing vertex 0: a neighbour in the fan, then one whose far edge pierces the face.
+  EXPECT_EQ(index.intersecting_faces(o, Vec3(-1, 0, 0), Vec3(0, -1, 0), {0, -1, -1}), none);
+  EXPECT_EQ(index.intersecting_faces(o, Vec3(0.3, 0.3, -1), Vec3(0.3, 0.3, 1), {0, -1, -1}), face);
+  // Not listed as shared, a touch at a corner is a meeting.
+  EXPECT_EQ(index.intersecting_faces(o, Vec3(-1, 0, 0), Vec3(0, -1, 0), {-1, -1, -1}), face);
+  // Sharing edge 0-1: across it in the plane, hinged out of it, folded onto the face.
+  EXPECT_EQ(index.intersecting_faces(x, o, Vec3(0.5, -1, 0), {1, 0, -1}), none);
+  EXPECT_EQ(index.intersecting_faces(x, o, Vec3(0.5, 0.5, 1), {1, 0, -1}), none);
+  EXPECT_EQ(index.intersecting_faces(x, o, Vec3(0.2, 0.5, 0), {1, 0, -1}), face);
+  // The face itself.
+  EXPECT_EQ(index.intersecting_faces(o, x, y, {0, 1, 2}), face);
   EXPECT_EQ(index.intersecting_faces(Vec3(20, 0, 0), Vec3(21, 0, 0), Vec3(20, 1, 0), {-1, -1, -1}),
-            std::vector<int>{});
-  EXPECT_TRUE(IntersectionIndex(Mesh()).intersecting_faces(a, b, c, {-1, -1, -1}).empty());
+            none);
+  EXPECT_TRUE(IntersectionIndex(Mesh()).intersecting_faces(o, x, y, {-1, -1, -1}).empty());
+}
+
+// Two faces of a fill: one folded back onto its neighbour across their shared edge meets it.
+TEST(TrianglesIntersect, AFoldAcrossASharedEdgeMeets) {
+  const std::array<Vec3, 3> face = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  EXPECT_FALSE(triangles_intersect(face, {Vec3(1, 0, 0), Vec3(0, 0, 0), Vec3(0.5, -1, 0)},
+                                   {0, 1, 2}, {1, 0, 3}));
+  EXPECT_TRUE(triangles_intersect(face, {Vec3(1, 0, 0), Vec3(0, 0, 0), Vec3(0.2, 0.5, 0)},
+                                  {0, 1, 2}, {1, 0, 3}));
 }
 
 }  // namespace

@@ -140,7 +140,7 @@ TEST(RunMethodOnHole, AFailingMethodIsAFailureOfThatHoleOnly) {
 // Our pipeline with a back-end fills the flat hole on a plane, flat (harmonic restores a plane
 // exactly), and hands over the hole's range image: depth, labels with hole pixels, the restoration.
 TEST(RunMethodOnHole, PipelineMethodFillsAndShowsItsImage) {
-  const HoleRun run = run_on_flat_hole(pipeline_method("harmonic", RepairOptions()));
+  const HoleRun run = run_on_flat_hole(pipeline_method("harmonic", testing::paper_chain()));
   EXPECT_TRUE(run.score.filled) << run.score.failure;
   EXPECT_EQ(run.score.method, "plane");
   EXPECT_LT(run.score.distance.hausdorff, 1e-6);

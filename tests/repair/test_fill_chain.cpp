@@ -8,21 +8,25 @@
 namespace rangefill {
 namespace {
 
-// --filler and --fallback spell the chain: the plane filler, then the front, the parts of a complex
-// hole and the loop's patches; the front filler has no parts.
+// --filler and --fallback spell the chain in the order given; with planes in it, the parts of a
+// complex hole come before the loop's patches.
 TEST(StrategyChain, SpellsTheFillerAndItsFallbacks) {
   using S = Strategy;
-  EXPECT_EQ(strategy_chain(Filler::plane, kDefaultFallbacks),
-            (std::vector<S>{S::plane, S::front, S::plane_in_part, S::liepa, S::least_area}));
-  EXPECT_EQ(FillOptions().strategies, strategy_chain(Filler::plane, kDefaultFallbacks));
+  EXPECT_EQ(
+      strategy_chain(kDefaultFiller, kDefaultFallbacks),
+      (std::vector<S>{S::fairing, S::plane, S::front, S::plane_in_part, S::liepa, S::least_area}));
+  EXPECT_EQ(FillOptions().strategies, strategy_chain(kDefaultFiller, kDefaultFallbacks));
   EXPECT_EQ(strategy_chain(Filler::plane, "none"), (std::vector<S>{S::plane, S::plane_in_part}));
-  EXPECT_EQ(strategy_chain(Filler::plane, "least-area"),
-            (std::vector<S>{S::plane, S::plane_in_part, S::liepa, S::least_area}));
+  EXPECT_EQ(strategy_chain(Filler::plane, "least-area,front"),
+            (std::vector<S>{S::plane, S::plane_in_part, S::liepa, S::least_area, S::front}));
   EXPECT_EQ(strategy_chain(Filler::front, "least-area"),
             (std::vector<S>{S::front, S::liepa, S::least_area}));
   EXPECT_EQ(strategy_chain(Filler::front, "none"), (std::vector<S>{S::front}));
-  EXPECT_THROW(strategy_chain(Filler::plane, "front,fairing"), InvalidInput);
-  EXPECT_EQ(filler_from_name(filler_name(Filler::front)), Filler::front);
+  EXPECT_EQ(strategy_chain(Filler::front, "fairing"), (std::vector<S>{S::front, S::fairing}));
+  EXPECT_THROW(strategy_chain(Filler::plane, "front,fronts"), InvalidInput);
+  EXPECT_EQ(strategy_chain(Filler::plane, kDefaultFallbacks),
+            (std::vector<S>{S::plane, S::front, S::plane_in_part, S::liepa, S::least_area}));
+  EXPECT_EQ(filler_from_name(filler_name(Filler::fairing)), Filler::fairing);
   EXPECT_THROW(filler_from_name("planes"), InvalidInput);
   EXPECT_EQ(strategy_name(S::plane_in_part), "plane, in part");
 }
@@ -36,6 +40,7 @@ TEST(FillByChain, TakesTheFirstStrategyThatFillsAndRecordsTheRefusals) {
   const BoundaryLoop hole = testing::inner_loop(sheet);
   const std::unique_ptr<Inpainter> inpainter = make_inpainter("harmonic");
   FillOptions options;
+  options.strategies = strategy_chain(Filler::plane, "front,least-area");
   HoleReport plane;
   ASSERT_TRUE(fill_by_chain(surface, hole, *inpainter, options, false, plane));
   EXPECT_EQ(plane.strategy, Strategy::plane);
@@ -58,7 +63,7 @@ TEST(FillByChain, TakesTheFirstStrategyThatFillsAndRecordsTheRefusals) {
     if (loop.vertices.size() == 64) outer = loop;  // the hole's outer loop, round the island
   }
   ASSERT_FALSE(outer.vertices.empty());
-  options.strategies = strategy_chain(Filler::plane, kDefaultFallbacks);
+  options.strategies = strategy_chain(Filler::plane, "front,least-area");
   HoleReport refused;
   EXPECT_FALSE(fill_by_chain(around, outer, *inpainter, options, false, refused));
   EXPECT_FALSE(refused.filled);

@@ -74,8 +74,8 @@ TEST(FrontFiller, ClosesASphereCapOnTheSphere) {
   const Mesh cut = testing::remove_faces(
       sphere, [](const Vec3& p) { return p.z() > std::cos(40 * M_PI / 180); });
   const double mean_edge = mean_edge_length(cut);
-  RepairOptions options;
-  options.strategies = strategy_chain(Filler::front, kDefaultFallbacks);
+  RepairOptions options = testing::paper_chain();
+  options.strategies = strategy_chain(Filler::front, "least-area");
   const RepairResult result = repair(cut, options);
   expect_one_hole_closed_by(cut, result, Strategy::front);
   ASSERT_GT(result.mesh.vertex_count(), cut.vertex_count() + 100);
@@ -140,7 +140,7 @@ TEST(FrontFiller, ClosesAHoleWrappedRoundATube) {
   ASSERT_FALSE(parts.holes.empty());
   EXPECT_EQ(parts.holes[0].strategy, Strategy::plane_in_part);
 
-  const RepairResult result = repair(cut);
+  const RepairResult result = repair(cut, testing::paper_chain());
   ASSERT_FALSE(result.holes.empty());
   for (const HoleReport& report : result.holes) {
     EXPECT_TRUE(report.filled) << report.failure;

@@ -41,7 +41,7 @@ TEST_P(EveryBackend, TiltedPlaneComesBackOnThePlane) {
   const testing::TiltedSheet sheet = testing::make_tilted_sheet(
       40, Eigen::AngleAxisd(0.9, Vec3(1, -2, 0.5).normalized()).toRotationMatrix(), Vec3(3, -7, 11),
       Vec3(20, 20, 0), 8);
-  RepairOptions options;
+  RepairOptions options = testing::paper_chain();
   options.inpainter = GetParam();
   options.holes = {sheet.hole.id};
   const RepairResult result = repair(sheet.mesh, options);
@@ -76,7 +76,7 @@ TEST(Pipeline, HarmonicSaddleComesBackWithNavierStokes) {
   // (a fast-marching transport, not a Laplace solve) is off by 0.74-0.83 d_m on the bare image of
   // this saddle for radii 5-10; a flat fill would be off by up to 1.6 d_m.
   for (const auto& [trend, bound] : {std::pair{TrendKind::quadric, 0.1}, {TrendKind::none, 0.75}}) {
-    RepairOptions options;
+    RepairOptions options = testing::paper_chain();
     options.inpainter = "ns";
     options.trend = trend;
     options.holes = inner_loops(saddle);
@@ -115,7 +115,7 @@ TEST_P(SphereCap, FillStaysBetweenCuttingPlaneAndSphere) {
   ASSERT_NEAR(d_m, 0.05, 0.01);
   const double cut = std::cos(GetParam().half_angle_degrees * M_PI / 180);
   const Mesh capless = testing::remove_faces(sphere, [&](const Vec3& p) { return p.z() > cut; });
-  RepairOptions options;
+  RepairOptions options = testing::paper_chain();
   options.inpainter = GetParam().backend;
   const RepairResult result = repair(capless, options);
   ASSERT_EQ(result.holes.size(), 1u);
@@ -169,7 +169,7 @@ TEST(Pipeline, PaperPipelineWithoutTrendSagsBelowTheCutOnACap) {
   double plane = 1;
   for (int v : holes.loops.at(0).vertices) plane = std::min(plane, capless.positions[v].z());
   for (const char* backend : {"ns", "telea"}) {
-    RepairOptions options;
+    RepairOptions options = testing::paper_chain();
     options.inpainter = backend;
     options.trend = TrendKind::none;
     const RepairResult result = repair(capless, options);
@@ -190,7 +190,7 @@ TEST(Pipeline, MlsBringsSphereCapsBack) {
   for (const auto& [degrees, bound] : {std::pair{20.0, 0.1}, {40.0, 0.1}}) {
     const double cut = std::cos(degrees * M_PI / 180);
     const Mesh capless = testing::remove_faces(sphere, [&](const Vec3& p) { return p.z() > cut; });
-    RepairOptions options;
+    RepairOptions options = testing::paper_chain();
     options.inpainter = "mls";
     const RepairResult result = repair(capless, options);
     ASSERT_TRUE(result.holes.at(0).filled) << result.holes[0].failure;
@@ -231,7 +231,8 @@ TEST(Pipeline, ColourGradientIsContinuedAcrossTheHole) {
     RepairOptions options;
     options.inpainter = c.inpainter;
     options.trend = c.trend;
-    options.strategies = strategy_chain(c.filler, kDefaultFallbacks);
+    options.strategies =
+        strategy_chain(c.filler, c.filler == Filler::plane ? "front,least-area" : "least-area");
     options.holes = {sheet.hole.id};
     const RepairResult result = repair(sheet.mesh, options);
     ASSERT_TRUE(result.holes.at(0).filled) << result.holes[0].failure;
@@ -333,9 +334,13 @@ void expect_closed_by_front_and_in_parts(const Mesh& truth, const Mesh& holed,
                                          const std::string& name, double front_bound,
                                          double parts_bound) {
   ASSERT_EQ(find_holes(holed, build_topology(holed)).loops.size(), 1u);
-  const HardOutcome front = repair_hard_case(truth, holed, {}, name + ", default");
+  const HardOutcome front =
+      repair_hard_case(truth, holed, testing::paper_chain(), name + ", planes then front");
   EXPECT_EQ(front.result.holes.at(0).strategy, Strategy::front);
   EXPECT_LT(front.worst, front_bound);
+  const HardOutcome faired = repair_hard_case(truth, holed, {}, name + ", default");
+  EXPECT_EQ(faired.result.holes.at(0).strategy, Strategy::fairing);
+  EXPECT_LT(faired.worst, front_bound);
   const HardOutcome parts = repair_hard_case(truth, holed, planes_only(), name + ", planes");
   EXPECT_TRUE(
       std::any_of(parts.result.holes.begin(), parts.result.holes.end(),
@@ -393,7 +398,7 @@ TEST(HardHoles, ZoneReachingAnotherHoleDoesNotBridgeIt) {
   const Mesh holed = testing::remove_faces(testing::make_grid(40), [&](const Vec3& p) {
     return (p - centres[0]).norm() < 6 || (p - centres[1]).norm() < 6;
   });
-  RepairOptions options;
+  RepairOptions options = testing::paper_chain();
   options.holes = inner_loops(holed);
   ASSERT_EQ(options.holes.size(), 2u);
   const RepairResult result = repair(holed, options);
@@ -430,7 +435,7 @@ TEST(HardHoles, ZoneEnclosingAnIslandDoesNotCoverIt) {
   }
   const Mesh holed =
       testing::remove_faces(sheet, [&](const Vec3& p) { return (p - centre).norm() < 8; });
-  RepairOptions options;
+  RepairOptions options = testing::paper_chain();
   options.zone.gamma_degrees = 40;
   options.zone.rings = 12;
   options.holes = inner_loops(holed);

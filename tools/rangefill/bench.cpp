@@ -23,7 +23,8 @@ using nlohmann::json;
 
 struct BenchCommand {
   std::vector<std::string> meshes;
-  std::string inpainters, baselines, trends = "auto", csv, save, out, filler = "plane";
+  std::string inpainters, baselines, trends = "auto", csv, save, out,
+                                     filler = filler_name(kDefaultFiller);
   std::string fallback = kDefaultFallbacks, shapes = "disk,elongated";
   PunchOptions punch = [] {
     PunchOptions options;
@@ -450,10 +451,13 @@ void add_bench_command(CLI::App& app, Runner& runner) {
   sub->add_option("--trends", command->trends,
                   "Comma-separated trends (none, plane, quadric, sphere, auto)")
       ->capture_default_str();
-  sub->add_option("--filler", command->filler, "plane or front (see rangefill repair --help)")
+  sub->add_option("--filler", command->filler,
+                  "fairing, plane or front (see rangefill repair --help); plane compares the "
+                  "back-ends on every hole")
       ->capture_default_str()
-      ->check(CLI::IsMember({"plane", "front"}));
-  sub->add_option("--fallback", command->fallback, "front, least-area, both, or none")
+      ->check(CLI::IsMember({"fairing", "plane", "front"}));
+  sub->add_option("--fallback", command->fallback,
+                  "fairing, plane, front, least-area in the order tried, or none")
       ->capture_default_str();
   sub->add_option("--threads", command->threads, "Holes filled at once (each in a process)")
       ->capture_default_str()

@@ -24,8 +24,8 @@ struct RepairCommand {
   RepairOptions options;
   std::string input, output, report, debug_dir, holes = "all";
   std::string trend = trend_name(options.trend);
-  std::string filler = filler_name(Filler::plane);  // RepairOptions' strategies: the chain of
-  std::string fallback = kDefaultFallbacks;         // this filler and these fallbacks
+  std::string filler = filler_name(kDefaultFiller);  // RepairOptions' strategies: the chain of
+  std::string fallback = kDefaultFallbacks;          // this filler and these fallbacks
   std::string mesher = "greedy";
   bool in_place = false, json = false, ascii = false, fill_all = false;
 };
@@ -326,10 +326,11 @@ void add_repair_command(CLI::App& app, Runner& runner) {
                   "fairing: Liepa's patch refined and faired (CGAL)")
       ->capture_default_str()
       ->check(CLI::IsMember({"plane", "front", "fairing"}));
-  sub->add_option("--fallback", command->fallback,
-                  "What takes a hole the filler cannot fill, tried in the order listed: fairing, "
-                  "front, least-area (a patch of its loop without new vertices: Liepa's weight, "
-                  "else least area), or none")
+  sub->add_option(
+         "--fallback", command->fallback,
+         "What takes a hole the filler cannot fill, tried in the order listed: fairing, "
+         "plane, front, least-area (a patch of its loop without new vertices: Liepa's weight, "
+         "else least area), or none")
       ->capture_default_str();
   sub->add_option("--mesher", command->mesher,
                   "For a point cloud (points, no faces): greedy (PCL's greedy projection, "

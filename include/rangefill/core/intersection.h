@@ -36,7 +36,8 @@ class IntersectionIndex {
 /// IntersectionIndex::intersecting_faces decides; `ids_a`, `ids_b` name their corners (-1: a
 /// corner no other triangle has). Degenerate triangles meet nothing.
 bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b,
-                         const Triangle& ids_a = {-1, -1, -1}, const Triangle& ids_b = {-1, -1, -1});
+                         const Triangle& ids_a = {-1, -1, -1},
+                         const Triangle& ids_b = {-1, -1, -1});
 
 /// Pairs (f, g) with f in `faces` and g any other face of the mesh that intersect beyond their
 /// shared vertices (IntersectionIndex::intersecting_faces). Each unordered pair is counted once.

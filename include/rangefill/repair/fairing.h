@@ -12,10 +12,10 @@
 namespace rangefill {
 
 struct FairingOptions {
-  int rings = 3;                   // rings of faces around the loop that the fairing reads
-  double density = 1.4142;         // CGAL's density_control_factor of the refinement (√2)
-  int continuity = 1;              // C0, C1 or C2 across the loop (the bi-Laplacian: 1)
-  int remeshing_iterations = 3;    // isotropic remeshing of the patch to edge length d_m; 0: none
+  int rings = 4;                 // rings of faces around the loop that the fairing reads
+  double density = 1.4142;       // CGAL's density_control_factor of the refinement (√2)
+  int continuity = 2;            // C0, C1 or C2 across the loop (CGAL's default: 1)
+  int remeshing_iterations = 3;  // isotropic remeshing of the patch to edge length d_m; 0: none
 };
 
 /// The faired patch of `hole` (a loop of `mesh`'s find_holes), its triangles oriented with the

@@ -49,14 +49,17 @@ enum class Filler { plane, front, fairing };
 std::string filler_name(Filler filler);
 Filler filler_from_name(const std::string& name);
 
-/// The fallbacks of the default chain.
-inline constexpr const char* kDefaultFallbacks = "front,least-area";
+/// The default chain: the faired patch (C2, remeshed to d_m), which beat CGAL's fairing on the
+/// mesh kit (README); then range images on planes, the advancing front and the loop's patches.
+inline constexpr Filler kDefaultFiller = Filler::fairing;
+inline constexpr const char* kDefaultFallbacks = "plane,front,least-area";
 
 /// The chain of a filler and its fallbacks, tried in the order listed: a comma-separated list of
-/// "fairing" (the faired patch), "front" (the advancing front) and "least-area" (a patch of the
-/// loop: Liepa's weight, else least area), or "none". With the plane filler the parts of a complex
-/// hole (VI-C) come before the loop patches, else last. Throws InvalidInput on an unknown or
-/// repeated fallback, or on the filler among its own fallbacks.
+/// "fairing" (the faired patch), "plane" (range images), "front" (the advancing front) and
+/// "least-area" (a patch of the loop: Liepa's weight, else least area), or "none". With planes in
+/// the chain, the parts of a complex hole (VI-C) come before the loop patches, else last. A
+/// strategy already in the chain (the filler among the fallbacks) is not tried twice. Throws
+/// InvalidInput on an unknown fallback.
 std::vector<Strategy> strategy_chain(Filler filler, const std::string& fallbacks);
 
 /// One refusal met on the way: of a strategy, or (strategy empty) of the hole before any.
@@ -110,7 +113,7 @@ struct HoleImages {
 
 /// How one hole is filled.
 struct FillOptions {
-  std::vector<Strategy> strategies = strategy_chain(Filler::plane, kDefaultFallbacks);
+  std::vector<Strategy> strategies = strategy_chain(kDefaultFiller, kDefaultFallbacks);
   FrontOptions front;
   FairingOptions fairing;
   MlsOptions mls;
