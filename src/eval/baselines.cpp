@@ -1,5 +1,5 @@
 // CGAL's hole filling with refinement and fairing (heavy headers: the one such translation unit of
-// the evaluation library; repair/loop_patch.cpp is the core's).
+// the evaluation library; repair/loop_patch.cpp and repair/fairing.cpp are the core's).
 #include "rangefill/eval/baselines.h"
 
 #include <algorithm>
@@ -7,22 +7,18 @@
 #include <iterator>
 #include <map>
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
-#include <CGAL/Surface_mesh.h>
 
 #include "rangefill/core/errors.h"
 #include "rangefill/core/topology.h"
 #include "rangefill/repair/holes.h"
+#include "repair/cgal_surface_mesh.h"
 
 namespace rangefill {
 
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using SurfaceMesh = CGAL::Surface_mesh<Kernel::Point_3>;
-using VertexIndex = SurfaceMesh::Vertex_index;
-using FaceIndex = SurfaceMesh::Face_index;
+using namespace cgal_surface_mesh;
 namespace pmp = CGAL::Polygon_mesh_processing;
 
 SurfaceMesh to_surface_mesh(const Mesh& mesh) {

@@ -7,23 +7,19 @@
 #include <map>
 #include <set>
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/fair.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
-#include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 
 #include "rangefill/core/errors.h"
+#include "repair/cgal_surface_mesh.h"
 
 namespace rangefill {
 
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using SurfaceMesh = CGAL::Surface_mesh<Kernel::Point_3>;
-using VertexIndex = SurfaceMesh::Vertex_index;
-using FaceIndex = SurfaceMesh::Face_index;
+using namespace cgal_surface_mesh;
 namespace pmp = CGAL::Polygon_mesh_processing;
 
 // The faces within `rings` rings of the loop's vertices, ascending.
