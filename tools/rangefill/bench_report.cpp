@@ -176,10 +176,12 @@ std::vector<Table> tables(const BenchResults& results, const BenchSummary& summa
   all.push_back(class_table("Effectiveness ranking with and without sharp features", "feature",
                             results, summary, summary.feature_classes));
 
-  Table holes{"H / d_m of every hole (Tables 1 and 2; open: not closed)",
-              {"mesh", "hole", "shape", "radius / d_m", "length / d_m", "area / d_m²", "bending",
-               "curvature", "sharp"},
-              {}};
+  Table holes{
+      "H / d_m of every hole and the strategy that filled it (Tables 1 and 2; open: not "
+      "closed)",
+      {"mesh", "hole", "shape", "radius / d_m", "length / d_m", "area / d_m²", "bending",
+       "curvature", "sharp"},
+      {}};
   for (const std::string& method : results.methods) holes.header.push_back(method);
   for (size_t h = 0; h < n; ++h) {
     const BenchHole& hole = results.holes[h];
@@ -194,7 +196,8 @@ std::vector<Table> tables(const BenchResults& results, const BenchSummary& summa
                                     hole.hole.sharp_feature ? "yes" : "no"};
     for (size_t m = 0; m < results.methods.size(); ++m) {
       const double value = hausdorff_in_dm(results, h, m);
-      row.push_back(std::isnan(value) ? "open" : fixed(value));
+      row.push_back(
+          std::isnan(value) ? "open" : fixed(value) + " (" + results.runs[h][m].score.method + ")");
     }
     holes.rows.push_back(std::move(row));
   }
