@@ -246,7 +246,7 @@ std::vector<OpenLoop> open_loops_of(const Mesh& mesh, const RepairState& state) 
   return open_loops;
 }
 
-// The fill of reports[i] set aside: it would intersect the fill of hole `other` merged before it
+// A fill set aside: it would intersect the fill of hole `other`, merged before it
 // in this pass. Its loop is tried again in the next pass, against the merged mesh.
 void defer_fill(const BoundaryLoop& loop, int other, RepairState& state, HoleReport& report) {
   state.seen.erase(sorted_vertices(loop));
