@@ -110,6 +110,9 @@ bool remesh_and_fair(SurfaceMesh& surface, size_t original_faces, size_t origina
   for (FaceIndex f : surface.faces()) {
     if (static_cast<size_t>(f) >= original_faces) patch.push_back(f);
   }
+  // The loop's edges border the patch, so they are kept whole (protect_constraints). CGAL's
+  // precondition that protected edges be at most 4/3 of the target, compiled out under NDEBUG
+  // (every build of this project), is not what a loop needs: longer loop edges simply stay.
   pmp::isotropic_remeshing(patch, target, surface,
                            CGAL::parameters::number_of_iterations(
                                static_cast<unsigned int>(options.remeshing_iterations))
