@@ -26,6 +26,8 @@ std::string refusal_text(Refusal refusal) {
       return "no part of the complex hole could be filled";
     case Refusal::no_triangulation:
       return "no triangulation of its loop";
+    case Refusal::border_sized:
+      return "the loop is the size of a border: the faired patch is for holes";
     case Refusal::error:
       return "a stage failed";
   }
@@ -52,6 +54,8 @@ std::string refusal_name(Refusal refusal) {
       return "no_part";
     case Refusal::no_triangulation:
       return "no_triangulation";
+    case Refusal::border_sized:
+      return "border_sized";
     case Refusal::error:
       return "error";
   }

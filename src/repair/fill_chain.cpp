@@ -406,6 +406,9 @@ struct HoleWork {
       case Strategy::least_area:
         return fill_by_least_area(surface, hole);
       case Strategy::fairing: {
+        // A cap over a fifth of its component (asked for with --fill-all) is no hole to fair:
+        // its patch would be as large as the surface, and as slow.
+        if (is_border(hole)) return Refused{Refusal::border_sized, ""};
         Clock::time_point start = Clock::now();
         FillOutcome outcome = fill_by_fairing_descending(surface, hole, options.fairing);
         report.stages.fairing += lap(start);
