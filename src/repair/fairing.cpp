@@ -1,4 +1,10 @@
 // The core's translation unit of CGAL's hole filling and remeshing (heavy headers).
+//
+// CGAL's preconditions off in every build, as NDEBUG turns them off in Release: isotropic
+// remeshing requires protected edges of at most 4/3 of the target length, and a hole's loop may
+// have longer edges, which must stay whole (the input's faces are kept). CGAL then keeps them
+// whole; with the check on (a build without NDEBUG) it aborts instead.
+#define CGAL_NO_PRECONDITIONS
 #include "rangefill/repair/fairing.h"
 
 #include <algorithm>
@@ -110,9 +116,8 @@ bool remesh_and_fair(SurfaceMesh& surface, size_t original_faces, size_t origina
   for (FaceIndex f : surface.faces()) {
     if (static_cast<size_t>(f) >= original_faces) patch.push_back(f);
   }
-  // The loop's edges border the patch, so they are kept whole (protect_constraints). CGAL's
-  // precondition that protected edges be at most 4/3 of the target, compiled out under NDEBUG
-  // (every build of this project), is not what a loop needs: longer loop edges simply stay.
+  // The loop's edges border the patch, so they are kept whole (protect_constraints; see the top
+  // of this file for CGAL's precondition on their length).
   pmp::isotropic_remeshing(patch, target, surface,
                            CGAL::parameters::number_of_iterations(
                                static_cast<unsigned int>(options.remeshing_iterations))
