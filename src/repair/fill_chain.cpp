@@ -408,7 +408,10 @@ struct HoleWork {
       case Strategy::fairing: {
         // A cap over a fifth of its component (asked for with --fill-all) is no hole to fair:
         // its patch would be as large as the surface, and as slow.
-        if (is_border(hole)) return Refused{Refusal::border_sized, ""};
+        // So is a hole of more than 3000 d_m² (some 3500 new vertices; the mesh kit's largest are
+        // about 1000): the fairing's linear systems grow faster than the image pipeline's.
+        const double area_in_dm2 = hole.area / (surface.mean_edge * surface.mean_edge);
+        if (is_border(hole) || area_in_dm2 > 3000) return Refused{Refusal::border_sized, ""};
         Clock::time_point start = Clock::now();
         FillOutcome outcome = fill_by_fairing_descending(surface, hole, options.fairing);
         report.stages.fairing += lap(start);
