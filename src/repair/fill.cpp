@@ -27,7 +27,7 @@ std::string refusal_text(Refusal refusal) {
     case Refusal::no_triangulation:
       return "no triangulation of its loop";
     case Refusal::border_sized:
-      return "the loop is the size of a border: the faired patch is for holes";
+      return "the loop is too large for the faired patch (a border, or over 3000 d_m²)";
     case Refusal::error:
       return "a stage failed";
   }

@@ -29,7 +29,7 @@ enum class Refusal {
   front_stuck,       // the advancing front did not close
   no_part,           // no part of a complex hole could be filled (VI-C)
   no_triangulation,  // the loop has no triangulation without new vertices
-  border_sized,      // a loop the size of a border (holes.h: is_border): not for the faired patch
+  border_sized,      // a loop too large for the faired patch: a border (holes.h) or > 3000 d_m²
   error,             // a stage failed (ProcessingError), its message in the detail
 };
 
