@@ -237,6 +237,22 @@ BoundaryLoop inner_loop(const Mesh& mesh) {
   return hole;
 }
 
+double smallest_angle(const Mesh& mesh, const Fill& fill) {
+  const auto position = [&](int v) {
+    const int boundary_size = static_cast<int>(fill.boundary.size());
+    return v < boundary_size ? mesh.positions[fill.boundary[v]] : fill.points[v - boundary_size];
+  };
+  double smallest = 180;
+  for (const Triangle& t : fill.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 u = position(t[(k + 1) % 3]) - position(t[k]);
+      const Vec3 v = position(t[(k + 2) % 3]) - position(t[k]);
+      smallest = std::min(smallest, std::atan2(u.cross(v).norm(), u.dot(v)) * 180 / M_PI);
+    }
+  }
+  return smallest;
+}
+
 void expect_bit_identical(const std::vector<Vec3>& actual, const std::vector<Vec3>& expected) {
   ASSERT_EQ(actual.size(), expected.size());
   for (size_t i = 0; i < actual.size(); ++i) {

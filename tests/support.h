@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rangefill/core/mesh.h"
+#include "rangefill/repair/fill.h"
 #include "rangefill/repair/holes.h"
 #include "rangefill/repair/pipeline.h"
 #include "rangefill/repair/zone.h"
@@ -82,6 +83,9 @@ void remove_grid_quad(Mesh& mesh, int n, int x, int y);
 
 /// The loop of `mesh` of least area_share (empty if none): the hole of a sheet with one.
 BoundaryLoop inner_loop(const Mesh& mesh);
+
+/// The smallest angle of the fill's triangles (of a loop of `mesh`), in degrees.
+double smallest_angle(const Mesh& mesh, const Fill& fill);
 
 /// EXPECTs that the two lists hold the same doubles, bit for bit (which == would not tell of -0).
 void expect_bit_identical(const std::vector<Vec3>& actual, const std::vector<Vec3>& expected);

@@ -9,6 +9,7 @@
 #include "rangefill/core/errors.h"
 #include "rangefill/repair/complex_hole.h"
 #include "rangefill/repair/loop_patch.h"
+#include "rangefill/repair/patch_angles.h"
 #include "rangefill/repair/stitch.h"
 
 namespace rangefill {
@@ -195,6 +196,19 @@ cv::Mat inpaint_colors(const RangeImage& image, const cv::Mat& mask, const Inpai
   return color;
 }
 
+// The fill with larger angles (patch_angles.h), refused unless it joins the mesh as a manifold
+// without cutting the surface or itself.
+FillOutcome checked(const SurfaceContext& surface, FillOutcome outcome) {
+  if (!std::holds_alternative<Fill>(outcome)) return outcome;
+  Fill fill =
+      with_larger_angles(surface.mesh, surface.topology, std::get<Fill>(std::move(outcome)));
+  if (const auto defect = fill_defect(surface.mesh, surface.topology, fill)) {
+    return Refused{Refusal::not_manifold, *defect};
+  }
+  if (fill_intersects(surface, fill)) return Refused{Refusal::intersects, ""};
+  return fill;
+}
+
 // Sections VI–VIII on one plane: range image, trend, inpainting, back-projection, stitching.
 FillOutcome fill_through_plane(const SurfaceContext& surface, const BoundaryLoop& hole,
                                const Zone& zone, const Frame& frame, const Inpainter& inpainter,
@@ -232,12 +246,9 @@ FillOutcome fill_through_plane(const SurfaceContext& surface, const BoundaryLoop
   if (!restored_color.empty()) patch.colors = patch_colors(patch, restored_color);
   FillOutcome stitched = stitch(mesh, topology, hole, frame, patch, triangulate_grid(patch));
   report.stages.stitching += lap(stage);
-  if (const Fill* fill = std::get_if<Fill>(&stitched)) {
-    const bool intersects = fill_intersects(surface, *fill);
-    report.stages.checking += lap(stage);
-    if (intersects) return Refused{Refusal::intersects, ""};
-  }
-  return stitched;
+  FillOutcome outcome = checked(surface, std::move(stitched));
+  report.stages.checking += lap(stage);
+  return outcome;
 }
 
 // Sections VI–VIII on each plane in turn: the first fill accepted wins, the first refusal is kept;
@@ -276,18 +287,6 @@ FillOutcome fill_part_through_planes(const SurfaceContext& surface, const Bounda
     if (!first) first = std::get<Refused>(std::move(outcome));
   }
   return Refused{Refusal::no_part, first ? refusal_text(first->refusal) : ""};
-}
-
-// A fill of the loop made elsewhere, refused unless it joins the mesh as a manifold without
-// cutting the surface or itself.
-FillOutcome checked(const SurfaceContext& surface, FillOutcome outcome) {
-  const Fill* fill = std::get_if<Fill>(&outcome);
-  if (!fill) return outcome;
-  if (const auto defect = fill_defect(surface.mesh, surface.topology, *fill)) {
-    return Refused{Refusal::not_manifold, *defect};
-  }
-  if (fill_intersects(surface, *fill)) return Refused{Refusal::intersects, ""};
-  return outcome;
 }
 
 // Tekumalla & Cohen: the advancing front over an MLS surface of the zone's vertices.

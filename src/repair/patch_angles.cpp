@@ -1,0 +1,233 @@
+// Heavy CGAL headers (smoothing, AABB trees): the core's one translation unit that includes them
+// besides repair/fairing.cpp and repair/loop_patch.cpp.
+#include "rangefill/repair/patch_angles.h"
+
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <optional>
+#include <set>
+
+#include <CGAL/Polygon_mesh_processing/angle_and_area_smoothing.h>
+#include <CGAL/boost/graph/Euler_operations.h>
+
+#include "core/cgal_triangles.h"
+#include "rangefill/core/intersection.h"
+#include "repair/cgal_surface_mesh.h"
+
+namespace rangefill {
+
+namespace {
+
+using namespace cgal_surface_mesh;
+namespace pmp = CGAL::Polygon_mesh_processing;
+
+// The angle at corner p of the triangle (p, q, r), in radians.
+double corner_angle(const Kernel::Point_3& p, const Kernel::Point_3& q, const Kernel::Point_3& r) {
+  const Kernel::Vector_3 u = q - p, v = r - p;
+  return std::atan2(std::sqrt(CGAL::cross_product(u, v).squared_length()), u * v);
+}
+
+// The smallest angle of the triangle (p, q, r).
+double smallest_angle(const Kernel::Point_3& p, const Kernel::Point_3& q,
+                      const Kernel::Point_3& r) {
+  return std::min({corner_angle(p, q, r), corner_angle(q, r, p), corner_angle(r, p, q)});
+}
+
+Vec3 to_vec(const Kernel::Point_3& p) {
+  return Vec3(p.x(), p.y(), p.z());
+}
+
+// The faces of the part outside the fill (its first `fill_faces`), for crossing tests.
+class Surroundings {
+ public:
+  Surroundings(const SurfaceMesh& surface, size_t fill_faces) : surface_(surface) {
+    for (FaceIndex f : surface.faces()) {
+      if (static_cast<size_t>(f) >= fill_faces) continue;
+      std::array<VertexIndex, 3> corners;
+      int k = 0;
+      for (VertexIndex v : surface.vertices_around_face(surface.halfedge(f))) corners[k++] = v;
+      faces_.push_back(corners);
+      boxes_.push_back(box(corners[0], corners[1], corners[2]));
+    }
+  }
+
+  // Whether the triangle (a, b, c) of the part's vertices crosses one of the faces beyond the
+  // vertices they share (core/intersection.h's rules).
+  bool crossed_by(VertexIndex a, VertexIndex b, VertexIndex c) const {
+    const CGAL::Bbox_3 bounds = box(a, b, c);
+    const std::array<Vec3, 3> triangle = {position(a), position(b), position(c)};
+    const Triangle ids = {static_cast<int>(a), static_cast<int>(b), static_cast<int>(c)};
+    for (size_t i = 0; i < faces_.size(); ++i) {
+      if (!CGAL::do_overlap(bounds, boxes_[i])) continue;
+      const auto& [p, q, r] = faces_[i];
+      if (triangles_intersect(triangle, {position(p), position(q), position(r)}, ids,
+                              {static_cast<int>(p), static_cast<int>(q), static_cast<int>(r)})) {
+        return true;
+      }
+    }
+    return false;
+  }
+
+ private:
+  Vec3 position(VertexIndex v) const { return to_vec(surface_.point(v)); }
+  CGAL::Bbox_3 box(VertexIndex a, VertexIndex b, VertexIndex c) const {
+    return surface_.point(a).bbox() + surface_.point(b).bbox() + surface_.point(c).bbox();
+  }
+
+  const SurfaceMesh& surface_;
+  std::vector<std::array<VertexIndex, 3>> faces_;
+  std::vector<CGAL::Bbox_3> boxes_;
+};
+
+// Lawson's flips inside the fill (faces from `fill_faces` on). An inner edge is flipped when its
+// new triangles cross no face around the fill and either its triangles cross one (the fill
+// folds over a tooth of the loop; the flip untangles it) or the flip raises the smaller of the two
+// triangles' smallest angles, the two faces bend by less than 60° (the surface keeps its shape)
+// and the new triangles face as the old ones. The new edge must not exist yet. Slivers over two
+// nearly collinear loop edges go this way.
+void flip_to_max_min_angle(SurfaceMesh& surface, size_t fill_faces) {
+  const auto in_fill = [&](FaceIndex f) {
+    return f != SurfaceMesh::null_face() && static_cast<size_t>(f) >= fill_faces;
+  };
+  const Surroundings surroundings(surface, fill_faces);
+  constexpr double kMinBendCosine = 0.5;
+  for (int sweep = 0; sweep < 10; ++sweep) {
+    bool flipped = false;
+    for (auto edge : surface.edges()) {
+      const auto h = surface.halfedge(edge), o = surface.opposite(h);
+      if (!in_fill(surface.face(h)) || !in_fill(surface.face(o))) continue;
+      const VertexIndex a = surface.source(h), b = surface.target(h);
+      const VertexIndex c = surface.target(surface.next(h)), d = surface.target(surface.next(o));
+      if (surface.halfedge(c, d) != SurfaceMesh::null_halfedge()) continue;
+      const auto &pa = surface.point(a), &pb = surface.point(b);
+      const auto &pc = surface.point(c), &pd = surface.point(d);
+      // Faces (a, b, c) and (b, a, d) become (a, d, c) and (d, b, c).
+      const auto m1 = CGAL::normal(pa, pd, pc), m2 = CGAL::normal(pd, pb, pc);
+      if (m1 == CGAL::NULL_VECTOR || m2 == CGAL::NULL_VECTOR) continue;
+      const bool tangled = surroundings.crossed_by(a, b, c) || surroundings.crossed_by(b, a, d);
+      if (!tangled) {
+        const double before = std::min(smallest_angle(pa, pb, pc), smallest_angle(pb, pa, pd));
+        const double after = std::min(smallest_angle(pa, pd, pc), smallest_angle(pd, pb, pc));
+        if (after <= before + 1e-9) continue;
+        const auto n1 = CGAL::unit_normal(pa, pb, pc), n2 = CGAL::unit_normal(pb, pa, pd);
+        if (n1 * n2 < kMinBendCosine) continue;
+        if (m1 * n1 <= 0 || m1 * n2 <= 0 || m2 * n1 <= 0 || m2 * n2 <= 0) continue;
+      }
+      if (surroundings.crossed_by(a, d, c) || surroundings.crossed_by(d, b, c)) continue;
+      CGAL::Euler::flip_edge(h, surface);
+      flipped = true;
+    }
+    if (!flipped) break;
+  }
+}
+
+// Moves the fill's new vertices (from `new_vertices` on) over the fill's faces (from `fill_faces`
+// on) towards larger angles; CGAL makes no move that shrinks an angle or lets the surface
+// self-intersect, and projects each back onto the fill as it was.
+void smooth_angles(SurfaceMesh& surface, size_t fill_faces, size_t new_vertices) {
+  std::vector<FaceIndex> faces;
+  for (FaceIndex f : surface.faces()) {
+    if (static_cast<size_t>(f) >= fill_faces) faces.push_back(f);
+  }
+  auto fixed = surface.add_property_map<VertexIndex, bool>("v:fixed", false).first;
+  for (VertexIndex v : surface.vertices()) fixed[v] = static_cast<size_t>(v) < new_vertices;
+  // Beyond some 20 sweeps the smallest angles no longer rise (the mesh kit's holes).
+  pmp::angle_and_area_smoothing(faces, surface,
+                                CGAL::parameters::number_of_iterations(20)
+                                    .use_area_smoothing(false)
+                                    .vertex_is_constrained_map(fixed));
+  surface.remove_property_map(fixed);
+}
+
+// The fill's vertex positions: its loop's, then its points.
+std::vector<Vec3> fill_positions(const Mesh& mesh, const Fill& fill) {
+  std::vector<Vec3> positions;
+  for (int v : fill.boundary) positions.push_back(mesh.positions[v]);
+  positions.insert(positions.end(), fill.points.begin(), fill.points.end());
+  return positions;
+}
+
+// The colours of `moved`'s points: those of `original` (the same fill before its points moved
+// over it) where each now lies, interpolated across the original triangle nearest to it.
+std::vector<Rgb> colours_where_moved(const Mesh& mesh, const Fill& original, const Fill& moved) {
+  std::vector<Rgb> colours;
+  for (int v : original.boundary) colours.push_back(mesh.colors[v]);
+  colours.insert(colours.end(), original.colors.begin(), original.colors.end());
+  Mesh own;
+  own.positions = fill_positions(mesh, original);
+  own.triangles = original.triangles;
+  std::vector<int> all(own.triangles.size());
+  std::iota(all.begin(), all.end(), 0);
+  const std::vector<cgal_triangles::CgalTriangle> triangles =
+      cgal_triangles::to_triangles(own, all);
+  const cgal_triangles::AabbTree tree(triangles.begin(), triangles.end());
+  std::vector<Rgb> result = original.colors;
+  for (size_t i = 0; i < moved.points.size(); ++i) {
+    if (moved.points[i] == original.points[i]) continue;
+    const auto [closest, primitive] =
+        tree.closest_point_and_primitive(cgal_triangles::to_point(moved.points[i]));
+    const Triangle& t = own.triangles[primitive - triangles.begin()];
+    const Vec3 &a = own.positions[t[0]], &b = own.positions[t[1]], &c = own.positions[t[2]];
+    const Vec3 p(closest.x(), closest.y(), closest.z());
+    const Vec3 normal = (b - a).cross(c - a);
+    const double area = normal.squaredNorm();
+    if (!(area > 0)) continue;
+    const float weight_a = static_cast<float>((c - b).cross(p - b).dot(normal) / area);
+    const float weight_b = static_cast<float>((a - c).cross(p - c).dot(normal) / area);
+    result[i] = weight_a * colours[t[0]] + weight_b * colours[t[1]] +
+                (1 - weight_a - weight_b) * colours[t[2]];
+  }
+  return result;
+}
+
+}  // namespace
+
+Fill with_larger_angles(const Mesh& mesh, const MeshTopology& topology, Fill fill) {
+  if (std::set<int>(fill.boundary.begin(), fill.boundary.end()).size() < fill.boundary.size()) {
+    return fill;  // a loop through one vertex twice: no manifold part to flip and smooth on
+  }
+  MeshPart part;
+  for (int face : faces_around(topology, mesh, fill.boundary, 1)) {
+    if (!part.add_face(mesh, face)) return fill;
+  }
+  const size_t fill_faces = part.surface.number_of_faces();
+  const size_t new_vertices = part.surface.number_of_vertices();
+  // The fill's vertex ids: the loop's vertices in the part, then the new points.
+  std::vector<VertexIndex> vertex;
+  for (int v : fill.boundary) vertex.push_back(part.local.at(v));
+  for (const Vec3& p : fill.points)
+    vertex.push_back(part.surface.add_vertex({p.x(), p.y(), p.z()}));
+  for (const Triangle& t : fill.triangles) {
+    if (part.surface.add_face(vertex[t[0]], vertex[t[1]], vertex[t[2]]) ==
+        SurfaceMesh::null_face()) {
+      return fill;
+    }
+  }
+  flip_to_max_min_angle(part.surface, fill_faces);
+  smooth_angles(part.surface, fill_faces, new_vertices);
+  flip_to_max_min_angle(part.surface, fill_faces);
+  std::optional<Fill> original;  // to colour the moved points (colours come with the mesh's)
+  if (!fill.colors.empty() && !mesh.colors.empty()) original = fill;
+
+  std::map<VertexIndex, int> fill_id;
+  for (size_t i = 0; i < vertex.size(); ++i) fill_id.emplace(vertex[i], static_cast<int>(i));
+  for (size_t i = 0; i < fill.points.size(); ++i) {
+    const auto& p = part.surface.point(vertex[fill.boundary.size() + i]);
+    fill.points[i] = Vec3(p.x(), p.y(), p.z());
+  }
+  fill.triangles.clear();
+  for (FaceIndex f : part.surface.faces()) {
+    if (static_cast<size_t>(f) < fill_faces) continue;
+    Triangle t;
+    int k = 0;
+    for (VertexIndex v : part.surface.vertices_around_face(part.surface.halfedge(f))) {
+      t[k++] = fill_id.at(v);
+    }
+    fill.triangles.push_back(t);
+  }
+  if (original) fill.colors = colours_where_moved(mesh, *original, fill);
+  return fill;
+}
+
+}  // namespace rangefill
