@@ -22,6 +22,11 @@ namespace {
 using namespace cgal_surface_mesh;
 namespace pmp = CGAL::Polygon_mesh_processing;
 
+// Faces under this smallest angle after the smoothing get a vertex nearer their short edge (12°:
+// a margin over the 10° that meshing tools take for a sliver), in up to this many rounds.
+const double kSliverAngle = 12 * M_PI / 180;
+constexpr int kSplitRounds = 3;
+
 // The angle at corner p of the triangle (p, q, r), in radians.
 double corner_angle(const Kernel::Point_3& p, const Kernel::Point_3& q, const Kernel::Point_3& r) {
   const Kernel::Vector_3 u = q - p, v = r - p;
@@ -32,6 +37,17 @@ double corner_angle(const Kernel::Point_3& p, const Kernel::Point_3& q, const Ke
 double smallest_angle(const Kernel::Point_3& p, const Kernel::Point_3& q,
                       const Kernel::Point_3& r) {
   return std::min({corner_angle(p, q, r), corner_angle(q, r, p), corner_angle(r, p, q)});
+}
+
+bool in_fill(FaceIndex f, size_t fill_faces) {
+  return f != SurfaceMesh::null_face() && static_cast<size_t>(f) >= fill_faces;
+}
+
+// The smallest angle of face f.
+double smallest_angle(const SurfaceMesh& surface, FaceIndex f) {
+  const auto h = surface.halfedge(f);
+  return smallest_angle(surface.point(surface.source(h)), surface.point(surface.target(h)),
+                        surface.point(surface.target(surface.next(h))));
 }
 
 Vec3 to_vec(const Kernel::Point_3& p) {
@@ -87,16 +103,13 @@ class Surroundings {
 // and the new triangles face as the old ones. The new edge must not exist yet. Slivers over two
 // nearly collinear loop edges go this way.
 void flip_to_max_min_angle(SurfaceMesh& surface, size_t fill_faces) {
-  const auto in_fill = [&](FaceIndex f) {
-    return f != SurfaceMesh::null_face() && static_cast<size_t>(f) >= fill_faces;
-  };
   const Surroundings surroundings(surface, fill_faces);
   constexpr double kMinBendCosine = 0.5;
   for (int sweep = 0; sweep < 10; ++sweep) {
     bool flipped = false;
     for (auto edge : surface.edges()) {
       const auto h = surface.halfedge(edge), o = surface.opposite(h);
-      if (!in_fill(surface.face(h)) || !in_fill(surface.face(o))) continue;
+      if (!in_fill(surface.face(h), fill_faces) || !in_fill(surface.face(o), fill_faces)) continue;
       const VertexIndex a = surface.source(h), b = surface.target(h);
       const VertexIndex c = surface.target(surface.next(h)), d = surface.target(surface.next(o));
       if (surface.halfedge(c, d) != SurfaceMesh::null_halfedge()) continue;
@@ -140,6 +153,43 @@ void smooth_angles(SurfaceMesh& surface, size_t fill_faces, size_t new_vertices)
   surface.remove_property_map(fixed);
 }
 
+// Splits at its midpoint the longest edge inside the fill of each fill face whose smallest angle
+// is under `threshold`, and joins the new vertex to the two opposite corners. A short loop edge met
+// at long range gets a vertex nearer to it, for the smoothing to place. Returns whether an edge was
+// split.
+bool split_at_slivers(SurfaceMesh& surface, size_t fill_faces, double threshold) {
+  std::vector<FaceIndex> slivers;
+  for (FaceIndex f : surface.faces()) {
+    if (in_fill(f, fill_faces) && smallest_angle(surface, f) < threshold) slivers.push_back(f);
+  }
+  bool split = false;
+  for (FaceIndex f : slivers) {
+    if (smallest_angle(surface, f) >= threshold) continue;  // a neighbour's split mended it
+    // The longest of its edges inside the fill (a loop edge stays whole).
+    auto longest = SurfaceMesh::null_halfedge();
+    double longest_length = 0;
+    for (auto h : surface.halfedges_around_face(surface.halfedge(f))) {
+      const double length = CGAL::squared_distance(surface.point(surface.source(h)),
+                                                   surface.point(surface.target(h)));
+      if (in_fill(surface.face(surface.opposite(h)), fill_faces) && length > longest_length) {
+        longest = h;
+        longest_length = length;
+      }
+    }
+    if (longest == SurfaceMesh::null_halfedge()) continue;
+    const auto midpoint = CGAL::midpoint(surface.point(surface.source(longest)),
+                                         surface.point(surface.target(longest)));
+    // split_edge: `added` runs to the new vertex, then `longest` from it (both faces are quads).
+    const auto added = CGAL::Euler::split_edge(longest, surface);
+    surface.point(surface.target(added)) = midpoint;
+    CGAL::Euler::split_face(added, surface.next(longest), surface);
+    const auto back = surface.opposite(longest);  // into the new vertex on the other face
+    CGAL::Euler::split_face(back, surface.next(surface.opposite(added)), surface);
+    split = true;
+  }
+  return split;
+}
+
 // The fill's vertex positions: its loop's, then its points.
 std::vector<Vec3> fill_positions(const Mesh& mesh, const Fill& fill) {
   std::vector<Vec3> positions;
@@ -163,8 +213,9 @@ std::vector<Rgb> colours_where_moved(const Mesh& mesh, const Fill& original, con
       cgal_triangles::to_triangles(own, all);
   const cgal_triangles::AabbTree tree(triangles.begin(), triangles.end());
   std::vector<Rgb> result = original.colors;
+  result.resize(moved.points.size());
   for (size_t i = 0; i < moved.points.size(); ++i) {
-    if (moved.points[i] == original.points[i]) continue;
+    if (i < original.points.size() && moved.points[i] == original.points[i]) continue;
     const auto [closest, primitive] =
         tree.closest_point_and_primitive(cgal_triangles::to_point(moved.points[i]));
     const Triangle& t = own.triangles[primitive - triangles.begin()];
@@ -172,7 +223,10 @@ std::vector<Rgb> colours_where_moved(const Mesh& mesh, const Fill& original, con
     const Vec3 p(closest.x(), closest.y(), closest.z());
     const Vec3 normal = (b - a).cross(c - a);
     const double area = normal.squaredNorm();
-    if (!(area > 0)) continue;
+    if (!(area > 0)) {
+      result[i] = colours[t[0]];
+      continue;
+    }
     const float weight_a = static_cast<float>((c - b).cross(p - b).dot(normal) / area);
     const float weight_b = static_cast<float>((a - c).cross(p - c).dot(normal) / area);
     result[i] = weight_a * colours[t[0]] + weight_b * colours[t[1]] +
@@ -204,17 +258,33 @@ Fill with_larger_angles(const Mesh& mesh, const MeshTopology& topology, Fill fil
       return fill;
     }
   }
+  std::optional<Fill> original;  // to colour the moved points (colours come with the mesh's)
+  if (!fill.colors.empty() && !mesh.colors.empty()) original = fill;
   flip_to_max_min_angle(part.surface, fill_faces);
   smooth_angles(part.surface, fill_faces, new_vertices);
   flip_to_max_min_angle(part.surface, fill_faces);
-  std::optional<Fill> original;  // to colour the moved points (colours come with the mesh's)
-  if (!fill.colors.empty() && !mesh.colors.empty()) original = fill;
+  for (int round = 0;
+       round < kSplitRounds && split_at_slivers(part.surface, fill_faces, kSliverAngle); ++round) {
+    smooth_angles(part.surface, fill_faces, new_vertices);
+    flip_to_max_min_angle(part.surface, fill_faces);
+  }
 
-  std::map<VertexIndex, int> fill_id;
-  for (size_t i = 0; i < vertex.size(); ++i) fill_id.emplace(vertex[i], static_cast<int>(i));
-  for (size_t i = 0; i < fill.points.size(); ++i) {
-    const auto& p = part.surface.point(vertex[fill.boundary.size() + i]);
-    fill.points[i] = Vec3(p.x(), p.y(), p.z());
+  // Back to fill ids: the loop's vertices by their place in it, then the part's new vertices in
+  // order (the fill's points, then those the splits added).
+  std::map<VertexIndex, int> loop_index;
+  for (size_t i = 0; i < fill.boundary.size(); ++i) {
+    loop_index.emplace(vertex[i], static_cast<int>(i));
+  }
+  const auto fill_id = [&](VertexIndex v) {
+    return static_cast<size_t>(v) < new_vertices
+               ? loop_index.at(v)
+               : static_cast<int>(fill.boundary.size() + (static_cast<size_t>(v) - new_vertices));
+  };
+  fill.points.clear();
+  for (VertexIndex v : part.surface.vertices()) {
+    if (static_cast<size_t>(v) < new_vertices) continue;
+    const auto& p = part.surface.point(v);
+    fill.points.emplace_back(p.x(), p.y(), p.z());
   }
   fill.triangles.clear();
   for (FaceIndex f : part.surface.faces()) {
@@ -222,7 +292,7 @@ Fill with_larger_angles(const Mesh& mesh, const MeshTopology& topology, Fill fil
     Triangle t;
     int k = 0;
     for (VertexIndex v : part.surface.vertices_around_face(part.surface.halfedge(f))) {
-      t[k++] = fill_id.at(v);
+      t[k++] = fill_id(v);
     }
     fill.triangles.push_back(t);
   }
