@@ -1,7 +1,8 @@
 // A fill's smallest angles raised without changing its surface: Lawson's flips of its inner edges
 // and CGAL's angle smoothing of its new points over the fill itself. Whatever made the fill (the
 // faired patch, the image's grid stitched to the loop, the advancing front), its triangles along
-// the loop meet short loop edges at long range; these steps give them back angles over 10°.
+// the loop meet short loop edges at long range; these steps, and points added where they are not
+// enough, give them back angles over 10°.
 #pragma once
 
 #include "rangefill/core/mesh.h"
