@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets of tests/fuzz with clang into build-fuzz/ and runs each (the mesh
-# readers and the depth reader's PNG check) for FUZZ_SECONDS (default 45) from the seed corpus
+# readers and the depth images' decoders) for FUZZ_SECONDS (default 45) from the seed corpus
 # tests/fuzz/corpus/<format>, two at a time.
 # New inputs go to build-fuzz/corpus/, findings to build-fuzz/findings/<format>/; a finding fails.
 set -euo pipefail
@@ -36,7 +36,7 @@ report() {
 }
 
 failed=0
-for pair in "ply obj" "off stl" "png"; do
+for pair in "ply obj" "off stl" "image"; do
   pids=()
   for format in $pair; do
     fuzz "$format" &

@@ -5,9 +5,7 @@
 #include <string>
 #include <vector>
 
-#include <opencv2/imgcodecs.hpp>
-
-#include "io/png_check.h"
+#include "io/image_codecs.h"
 #include "rangefill/core/errors.h"
 #include "rangefill/depth/depth_image.h"
 #include "rangefill/io/mesh_io.h"
@@ -25,26 +23,11 @@ std::string lower_extension(const fs::path& path) {
   return extension;
 }
 
-// The image in a file, as stored (cv::IMREAD_UNCHANGED), with one channel.
+// The image in a file, as stored, with one channel.
 cv::Mat decode_single_channel(const fs::path& path) {
   const std::string bytes = read_file(path);
   if (bytes.empty()) throw InvalidInput(path.string() + ": file is empty");
-  if (detail::is_png(bytes)) detail::check_png(bytes, path.string());
-  cv::Mat image;
-  try {
-    image = cv::imdecode(
-        cv::Mat(1, static_cast<int>(bytes.size()), CV_8U, const_cast<char*>(bytes.data())),
-        cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception&) {  // its text is OpenCV's assertion, not a word for the user
-    image.release();
-  }
-  if (image.empty()) {
-    throw InvalidInput(path.string() + ": not a PNG, TIFF or EXR image" +
-                       (lower_extension(path) == ".exr"
-                            ? " (or OpenCV's OpenEXR codec is off: OPENCV_IO_ENABLE_OPENEXR=1 "
-                              "turns it on)"
-                            : ""));
-  }
+  const cv::Mat image = detail::decode_image(bytes, path.string());
   if (image.channels() != 1) {
     throw InvalidInput(path.string() + ": has " + std::to_string(image.channels()) +
                        " channels; a depth or mask image has one");
@@ -94,17 +77,7 @@ namespace {
 
 // Encodes `image` in the format of `path`'s extension and writes it atomically.
 void encode_and_write(const cv::Mat& image, const fs::path& path) {
-  std::vector<std::uint8_t> bytes;
-  bool encoded = false;
-  try {
-    encoded = cv::imencode(lower_extension(path), image, bytes);
-  } catch (const cv::Exception&) {
-  }
-  if (!encoded) {
-    throw IoError(path.string() + ": OpenCV could not encode a " + cv::typeToString(image.type()) +
-                  " image as " + lower_extension(path));
-  }
-  write_file_atomically(std::string(bytes.begin(), bytes.end()), path);
+  write_file_atomically(detail::encode_image(image, lower_extension(path), path.string()), path);
 }
 
 }  // namespace
@@ -112,6 +85,10 @@ void encode_and_write(const cv::Mat& image, const fs::path& path) {
 void write_depth_image(const cv::Mat& depth, const fs::path& path) {
   check_depth_format(path, depth.type());
   encode_and_write(depth, path);
+}
+
+std::string encode_png(const cv::Mat& image) {
+  return detail::encode_image(image, ".png", "PNG image");
 }
 
 void write_mask_image(const cv::Mat& mask, const fs::path& path) {

@@ -263,8 +263,10 @@ Fill with_larger_angles(const Mesh& mesh, const MeshTopology& topology, Fill fil
   flip_to_max_min_angle(part.surface, fill_faces);
   smooth_angles(part.surface, fill_faces, new_vertices);
   flip_to_max_min_angle(part.surface, fill_faces);
+  // A triangulation of the loop alone (no new point) stays one: it gets the flips only.
+  const int split_rounds = fill.points.empty() ? 0 : kSplitRounds;
   for (int round = 0;
-       round < kSplitRounds && split_at_slivers(part.surface, fill_faces, kSliverAngle); ++round) {
+       round < split_rounds && split_at_slivers(part.surface, fill_faces, kSliverAngle); ++round) {
     smooth_angles(part.surface, fill_faces, new_vertices);
     flip_to_max_min_angle(part.surface, fill_faces);
   }

@@ -58,6 +58,50 @@ std::string message_of(const std::function<void()>& action) {
   return "no exception";
 }
 
+// Files are exchanged with OpenCV's own codecs bit for bit, both ways: 16-bit PNG and TIFF, float
+// TIFF and EXR, and 8-bit masks.
+TEST(DepthFiles, AreExchangedWithOpenCvBitForBit) {
+  const fs::path dir = testing::temporary_directory("depth-opencv");
+  for (const auto& [name, type] : std::vector<std::pair<std::string, int>>{
+           {"a.png", CV_16UC1}, {"a.tif", CV_16UC1}, {"b.tif", CV_32FC1}, {"c.exr", CV_32FC1}}) {
+    SCOPED_TRACE(name);
+    const cv::Mat depth = sample_depth(type);
+    ASSERT_TRUE(cv::imwrite((dir / ("opencv-" + name)).string(), depth));
+    EXPECT_TRUE(bit_identical(read_depth_image(dir / ("opencv-" + name)), depth));
+    write_depth_image(depth, dir / ("ours-" + name));
+    EXPECT_TRUE(
+        bit_identical(cv::imread((dir / ("ours-" + name)).string(), cv::IMREAD_UNCHANGED), depth));
+  }
+  const cv::Mat mask = sample_depth(CV_16UC1) > 30000;
+  write_mask_image(mask, dir / "mask.png");
+  EXPECT_TRUE(bit_identical(cv::imread((dir / "mask.png").string(), cv::IMREAD_UNCHANGED), mask));
+  fs::remove_all(dir);
+}
+
+// Truncated or damaged TIFF and EXR files are refused with one line naming the file; libtiff and
+// OpenEXR print nothing.
+TEST(DepthFiles, DamagedTiffAndExrAreRefusedSilently) {
+  const fs::path dir = testing::temporary_directory("depth-damaged");
+  for (const char* name : {"a.tif", "a.exr"}) {
+    write_depth_image(sample_depth(CV_32FC1), dir / name);
+    const std::string bytes = read_file(dir / name);
+    std::string scrambled = bytes;
+    for (size_t i = 8; i < scrambled.size(); i += 7) scrambled[i] = static_cast<char>(i * 31);
+    for (const std::string& damaged :
+         {bytes.substr(0, bytes.size() / 2), bytes.substr(0, 12), scrambled}) {
+      SCOPED_TRACE(std::string(name) + " of " + std::to_string(damaged.size()) + " bytes");
+      const fs::path path = dir / ("damaged-" + std::string(name));
+      write_file_atomically(damaged, path);
+      ::testing::internal::CaptureStderr();
+      const std::string message = message_of([&] { read_depth_image(path); });
+      EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+      EXPECT_EQ(message.rfind(path.string() + ": ", 0), 0u) << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos);
+    }
+  }
+  fs::remove_all(dir);
+}
+
 // Unreadable files and images that are not depth give one-line errors naming the file; formats
 // that cannot hold the type are refused before writing.
 TEST(DepthFiles, ClearErrorsForBadFiles) {
@@ -126,9 +170,9 @@ TEST(DepthFiles, DamagedPngsAreRefusedWithoutLibpngOutput) {
   EXPECT_TRUE(bit_identical(read_depth_image(dir / "full.png"), depth));
   fs::remove_all(dir);
 
-  // The PNG fuzzer's corpus (tests/fuzz/corpus/png, with its findings): each file is read or
+  // The image fuzzer's corpus (tests/fuzz/corpus/image, with its findings): each file is read or
   // refused with one line naming it, silently.
-  const fs::path corpus = fs::path(RANGEFILL_SOURCE_DIR) / "tests" / "fuzz" / "corpus" / "png";
+  const fs::path corpus = fs::path(RANGEFILL_SOURCE_DIR) / "tests" / "fuzz" / "corpus" / "image";
   int read = 0;
   for (const fs::directory_entry& entry : fs::directory_iterator(corpus)) {
     SCOPED_TRACE(entry.path().filename().string());
@@ -141,7 +185,7 @@ TEST(DepthFiles, DamagedPngsAreRefusedWithoutLibpngOutput) {
       EXPECT_EQ(message.find('\n'), std::string::npos);
     }
   }
-  EXPECT_EQ(read, 2);  // the 16-bit greyscale ones, interlaced or not
+  EXPECT_EQ(read, 5);  // 16-bit PNGs (interlaced or not) and TIFF, float TIFF and EXR
 }
 
 }  // namespace

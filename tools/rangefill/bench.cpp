@@ -5,14 +5,13 @@
 #include <filesystem>
 #include <sstream>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include "bench_report.h"
 #include "cli.h"
 #include "isolation.h"
 #include "rangefill/core/errors.h"
 #include "rangefill/eval/evaluation.h"
 #include "rangefill/eval/punch.h"
+#include "rangefill/io/depth_io.h"
 
 namespace rangefill::cli {
 
@@ -47,16 +46,17 @@ struct Punched {
   double mean_edge = 0;
 };
 
-std::string base64(const std::vector<uchar>& bytes) {
+std::string base64(const std::string& data) {
   static const char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  const auto bytes = [&](size_t i) { return static_cast<unsigned>(static_cast<uchar>(data[i])); };
   std::string text;
-  for (size_t i = 0; i < bytes.size(); i += 3) {
-    const unsigned n = bytes[i] << 16 | (i + 1 < bytes.size() ? bytes[i + 1] << 8 : 0) |
-                       (i + 2 < bytes.size() ? bytes[i + 2] : 0);
+  for (size_t i = 0; i < data.size(); i += 3) {
+    const unsigned n = bytes(i) << 16 | (i + 1 < data.size() ? bytes(i + 1) << 8 : 0) |
+                       (i + 2 < data.size() ? bytes(i + 2) : 0);
     text += digits[n >> 18 & 63];
     text += digits[n >> 12 & 63];
-    text += i + 1 < bytes.size() ? digits[n >> 6 & 63] : '=';
-    text += i + 2 < bytes.size() ? digits[n & 63] : '=';
+    text += i + 1 < data.size() ? digits[n >> 6 & 63] : '=';
+    text += i + 2 < data.size() ? digits[n & 63] : '=';
   }
   return text;
 }
@@ -65,9 +65,7 @@ std::string base64(const std::vector<uchar>& bytes) {
 std::string png_base64(const cv::Mat& image) {
   cv::Mat bytes;
   image.convertTo(bytes, CV_8U, 255.0);
-  std::vector<uchar> png;
-  cv::imencode(".png", bytes, png);
-  return base64(png);
+  return base64(encode_png(bytes));
 }
 
 json score_json(const HoleScore& s) {

@@ -23,10 +23,6 @@ int main(int argc, char** argv) {
   cli::add_patch_bench_command(app, runner);
 
   cli::set_command_line(argc, argv);
-  // OpenCV builds with the bundled OpenEXR read and write EXR (depth images) only when this is set
-  // before the first EXR file (opencv#21326); Debian's, built against the system OpenEXR, do by
-  // default. A value the user set is kept.
-  ::setenv("OPENCV_IO_ENABLE_OPENEXR", "1", 0);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

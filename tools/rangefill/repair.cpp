@@ -6,10 +6,9 @@
 #include <set>
 #include <sstream>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include "cli.h"
 #include "rangefill/core/errors.h"
+#include "rangefill/io/depth_io.h"
 #include "rangefill/repair/pipeline.h"
 #include "rangefill/repair/point_cloud.h"
 
@@ -57,10 +56,9 @@ void write_debug_images(const std::string& dir, const HoleImages& images) {
   for (const auto& [suffix, image] : {std::pair{"-depth.png", depth},
                                       {"-mask.png", images.image.mask()},
                                       {"-restored.png", restored}}) {
-    std::vector<uchar> png;
-    cv::imencode(".png", image, png);
+    const std::string png = encode_png(image);
     const OutputGuard guard;
-    write_file_atomically(std::string(png.begin(), png.end()), stem + suffix);
+    write_file_atomically(png, stem + suffix);
   }
 }
 

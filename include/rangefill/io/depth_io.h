@@ -1,8 +1,10 @@
 // Depth and mask image files: 16-bit PNG or TIFF in millimetres, float TIFF or EXR in metres
-// (conventions: depth/depth_image.h); written atomically.
+// (conventions: depth/depth_image.h); written atomically. Read and written with libpng, libtiff and
+// OpenEXR (not OpenCV's imgcodecs, whose 140 shared libraries a program would load at start).
 #pragma once
 
 #include <filesystem>
+#include <string>
 
 #include <opencv2/core.hpp>
 
@@ -20,6 +22,10 @@ cv::Mat read_mask_image(const std::filesystem::path& path);
 /// InvalidInput (another type or extension) or IoError, naming the file.
 void write_mask_image(const cv::Mat& mask, const std::filesystem::path& path);
 
+/// `image` as a PNG file's bytes: 8- or 16-bit samples, 1 or 3 channels (BGR, as OpenCV keeps
+/// colour). Throws InvalidInput for another type.
+std::string encode_png(const cv::Mat& image);
+
 /// True when the extension of `path` (any case) is one of the depth image formats: .png, .tif,
 /// .tiff, .exr.
 bool is_depth_image_path(const std::filesystem::path& path);
@@ -30,11 +36,6 @@ void check_depth_format(const std::filesystem::path& path, int type);
 
 /// Writes a depth image in the format of the extension (check_depth_format), atomically
 /// (write_file_atomically). Throws InvalidInput or IoError naming the file.
-///
-/// EXR goes through OpenCV's OpenEXR codec. Debian's OpenCV 4.6, built against the system OpenEXR,
-/// enables it by default; builds with the bundled OpenEXR enable it only when the environment
-/// variable OPENCV_IO_ENABLE_OPENEXR is set before the first EXR file is touched (the rangefill
-/// program sets it when unset); a disabled codec gives an InvalidInput saying so.
 void write_depth_image(const cv::Mat& depth, const std::filesystem::path& path);
 
 }  // namespace rangefill

@@ -17,7 +17,8 @@ namespace rangefill {
 /// flipped ones do not; the new points then move over the fill towards larger angles (CGAL's angle
 /// smoothing, projected back onto the fill; no move makes an angle smaller or the surface
 /// self-intersect), and the flips are made again. A triangle still under 12° gets a new point at
-/// the middle of its longest inner edge, smoothed and flipped in turn (up to three rounds). The
+/// the middle of its longest inner edge, smoothed and flipped in turn (up to three rounds), unless
+/// the fill has no new point (a triangulation of the loop alone stays one). The
 /// loop and the points keep their order, added points come last; colours are interpolated where
 /// points moved. A fill that does not join the faces around its loop as a manifold is returned as
 /// it is: the caller's check refuses it.

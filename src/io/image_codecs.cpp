@@ -1,0 +1,418 @@
+#include "io/image_codecs.h"
+
+#include <png.h>
+#include <tiffio.h>
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStdIO.h>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <csetjmp>
+#include <cstdarg>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <vector>
+
+#include "io/png_check.h"
+#include "rangefill/core/errors.h"
+
+namespace rangefill::detail {
+
+namespace {
+
+// OpenCV's limit on an image's pixels (CV_IO_MAX_IMAGE_PIXELS), which io/png_check.h applies to
+// PNG headers too: a small file must not make us allocate gigabytes.
+constexpr double kMaxPixels = 1 << 30;
+
+void check_size(double width, double height, const std::string& name) {
+  if (!(width > 0 && height > 0) || width * height > kMaxPixels) {
+    throw InvalidInput(name + ": an image of " + std::to_string(static_cast<long long>(width)) +
+                       "×" + std::to_string(static_cast<long long>(height)) +
+                       " pixels is empty or too large");
+  }
+}
+
+// --- PNG (libpng) -----------------------------------------------------------------------------
+
+// libpng reports errors by a longjmp from its error callback; the message is kept here.
+struct PngContext {
+  std::string_view bytes;
+  size_t at = 0;
+  std::string* output = nullptr;
+  char error[256] = "";
+};
+
+void png_failed(png_structp png, png_const_charp message) {
+  auto* context = static_cast<PngContext*>(png_get_error_ptr(png));
+  std::snprintf(context->error, sizeof(context->error), "%s", message);
+  png_longjmp(png, 1);
+}
+
+void png_warned(png_structp, png_const_charp) {}
+
+void png_read_bytes(png_structp png, png_bytep out, size_t count) {
+  auto* context = static_cast<PngContext*>(png_get_io_ptr(png));
+  if (count > context->bytes.size() - context->at) png_error(png, "file is truncated");
+  std::memcpy(out, context->bytes.data() + context->at, count);
+  context->at += count;
+}
+
+void png_write_bytes(png_structp png, png_bytep data, size_t count) {
+  static_cast<PngContext*>(png_get_io_ptr(png))
+      ->output->append(reinterpret_cast<char*>(data), count);
+}
+
+void png_flush_nothing(png_structp) {}
+
+// Decodes into `image` (allocated once the header is read); returns false with context.error set
+// on failure. No C++ object with a destructor lives in this frame across the longjmp.
+bool decode_png_into(PngContext& context, cv::Mat& image) {
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &context, png_failed, png_warned);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (!info) {
+    png_destroy_read_struct(&png, nullptr, nullptr);
+    std::snprintf(context.error, sizeof(context.error), "out of memory");
+    return false;
+  }
+  std::vector<png_bytep>* rows = nullptr;
+  if (setjmp(png_jmpbuf(png))) {
+    delete rows;
+    png_destroy_read_struct(&png, &info, nullptr);
+    return false;
+  }
+  png_set_read_fn(png, &context, png_read_bytes);
+  png_read_info(png, info);
+  const png_uint_32 width = png_get_image_width(png, info);
+  const png_uint_32 height = png_get_image_height(png, info);
+  const int bit_depth = png_get_bit_depth(png, info);
+  const int colour_type = png_get_color_type(png, info);
+  if (colour_type == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(png);
+  if (colour_type == PNG_COLOR_TYPE_GRAY && bit_depth < 8) png_set_expand_gray_1_2_4_to_8(png);
+  if (bit_depth == 16) png_set_swap(png);  // to the machine's byte order (little-endian)
+  if (colour_type & PNG_COLOR_MASK_COLOR) png_set_bgr(png);
+  png_set_interlace_handling(png);
+  png_read_update_info(png, info);
+  const int channels = png_get_channels(png, info);
+  const int depth = png_get_bit_depth(png, info) == 16 ? CV_16U : CV_8U;
+  if (static_cast<double>(width) * height > kMaxPixels) png_error(png, "image too large");
+  image.create(static_cast<int>(height), static_cast<int>(width), CV_MAKETYPE(depth, channels));
+  rows = new std::vector<png_bytep>(height);
+  for (png_uint_32 y = 0; y < height; ++y) (*rows)[y] = image.ptr(static_cast<int>(y));
+  png_read_image(png, rows->data());
+  png_read_end(png, nullptr);
+  delete rows;
+  png_destroy_read_struct(&png, &info, nullptr);
+  return true;
+}
+
+cv::Mat decode_png(std::string_view bytes, const std::string& name) {
+  check_png(bytes, name);
+  PngContext context;
+  context.bytes = bytes;
+  cv::Mat image;
+  if (!decode_png_into(context, image)) {
+    throw InvalidInput(name + ": corrupt PNG: " + context.error);
+  }
+  return image;
+}
+
+std::string encode_png(const cv::Mat& image, const std::string& name) {
+  const int depth = image.depth(), channels = image.channels();
+  if ((depth != CV_8U && depth != CV_16U) || (channels != 1 && channels != 3) || image.empty()) {
+    throw InvalidInput(name + ": PNG holds 8- or 16-bit images of 1 or 3 channels, not " +
+                       cv::typeToString(image.type()));
+  }
+  std::string output;
+  PngContext context;
+  context.output = &output;
+  png_structp png =
+      png_create_write_struct(PNG_LIBPNG_VER_STRING, &context, png_failed, png_warned);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (!info) {
+    png_destroy_write_struct(&png, nullptr);
+    throw IoError(name + ": out of memory encoding a PNG");
+  }
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    throw IoError(name + ": libpng could not encode the image: " + context.error);
+  }
+  png_set_write_fn(png, &context, png_write_bytes, png_flush_nothing);
+  png_set_IHDR(png, info, image.cols, image.rows, depth == CV_16U ? 16 : 8,
+               channels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_set_compression_level(png, 1);  // OpenCV's default for PNG: fast, most of the gain
+  png_write_info(png, info);
+  if (depth == CV_16U) png_set_swap(png);
+  if (channels == 3) png_set_bgr(png);
+  for (int y = 0; y < image.rows; ++y) {
+    png_write_row(png, const_cast<png_bytep>(image.ptr(y)));
+  }
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  return output;
+}
+
+// --- TIFF (libtiff) ---------------------------------------------------------------------------
+
+// A TIFF file in memory: what libtiff's client procedures read, or write to.
+struct TiffBuffer {
+  std::string bytes;
+  toff_t at = 0;
+  std::string error;
+};
+
+tmsize_t tiff_read(thandle_t handle, void* out, tmsize_t count) {
+  auto* buffer = static_cast<TiffBuffer*>(handle);
+  const toff_t available =
+      buffer->at < buffer->bytes.size() ? buffer->bytes.size() - buffer->at : 0;
+  const toff_t copied = std::min<toff_t>(available, static_cast<toff_t>(count));
+  std::memcpy(out, buffer->bytes.data() + buffer->at, copied);
+  buffer->at += copied;
+  return static_cast<tmsize_t>(copied);
+}
+
+tmsize_t tiff_write(thandle_t handle, void* data, tmsize_t count) {
+  auto* buffer = static_cast<TiffBuffer*>(handle);
+  if (buffer->bytes.size() < buffer->at + count) buffer->bytes.resize(buffer->at + count);
+  std::memcpy(buffer->bytes.data() + buffer->at, data, count);
+  buffer->at += count;
+  return count;
+}
+
+toff_t tiff_seek(thandle_t handle, toff_t offset, int whence) {
+  auto* buffer = static_cast<TiffBuffer*>(handle);
+  const toff_t base = whence == SEEK_CUR   ? buffer->at
+                      : whence == SEEK_END ? buffer->bytes.size()
+                                           : 0;
+  buffer->at = base + offset;
+  return buffer->at;
+}
+
+int tiff_close(thandle_t) {
+  return 0;
+}
+
+toff_t tiff_size(thandle_t handle) {
+  return static_cast<TiffBuffer*>(handle)->bytes.size();
+}
+
+int tiff_map(thandle_t, void**, toff_t*) {
+  return 0;
+}
+
+void tiff_unmap(thandle_t, void*, toff_t) {}
+
+int tiff_error(TIFF*, void* user_data, const char* module, const char* format, va_list args) {
+  auto* buffer = static_cast<TiffBuffer*>(user_data);
+  if (buffer->error.empty()) {
+    char text[256];
+    std::vsnprintf(text, sizeof(text), format, args);
+    buffer->error = std::string(module ? module : "libtiff") + ": " + text;
+  }
+  return 1;  // handled: libtiff prints nothing
+}
+
+int tiff_warning(TIFF*, void*, const char*, const char*, va_list) {
+  return 1;
+}
+
+// The buffer opened by libtiff ("r" or "w"), its errors and warnings kept off stderr.
+TIFF* open_tiff(TiffBuffer& buffer, const char* mode, const std::string& name) {
+  TIFFOpenOptions* options = TIFFOpenOptionsAlloc();
+  TIFFOpenOptionsSetErrorHandlerExtR(options, tiff_error, &buffer);
+  TIFFOpenOptionsSetWarningHandlerExtR(options, tiff_warning, &buffer);
+  TIFFOpenOptionsSetMaxSingleMemAlloc(options, static_cast<tmsize_t>(kMaxPixels) * 4);
+  TIFF* tiff = TIFFClientOpenExt(name.c_str(), mode, &buffer, tiff_read, tiff_write, tiff_seek,
+                                 tiff_close, tiff_size, tiff_map, tiff_unmap, options);
+  TIFFOpenOptionsFree(options);
+  return tiff;
+}
+
+// Closes the TIFF when it goes out of scope.
+struct TiffCloser {
+  TIFF* tiff;
+  ~TiffCloser() { TIFFClose(tiff); }
+};
+
+cv::Mat decode_tiff(std::string_view bytes, const std::string& name) {
+  TiffBuffer buffer;
+  buffer.bytes.assign(bytes);
+  TIFF* tiff = open_tiff(buffer, "r", name);
+  if (!tiff) throw InvalidInput(name + ": corrupt TIFF: " + buffer.error);
+  const TiffCloser closer{tiff};
+  std::uint32_t width = 0, height = 0;
+  std::uint16_t samples = 1, bits = 1, format = SAMPLEFORMAT_UINT, planar = PLANARCONFIG_CONTIG;
+  TIFFGetField(tiff, TIFFTAG_IMAGEWIDTH, &width);
+  TIFFGetField(tiff, TIFFTAG_IMAGELENGTH, &height);
+  TIFFGetFieldDefaulted(tiff, TIFFTAG_SAMPLESPERPIXEL, &samples);
+  TIFFGetFieldDefaulted(tiff, TIFFTAG_BITSPERSAMPLE, &bits);
+  TIFFGetFieldDefaulted(tiff, TIFFTAG_SAMPLEFORMAT, &format);
+  TIFFGetFieldDefaulted(tiff, TIFFTAG_PLANARCONFIG, &planar);
+  check_size(width, height, name);
+  int depth = -1;
+  if (format == SAMPLEFORMAT_UINT && bits == 8) depth = CV_8U;
+  if (format == SAMPLEFORMAT_UINT && bits == 16) depth = CV_16U;
+  if (format == SAMPLEFORMAT_IEEEFP && bits == 32) depth = CV_32F;
+  if (depth < 0 || (samples > 1 && planar != PLANARCONFIG_CONTIG) || samples > 4) {
+    throw InvalidInput(name + ": TIFF of " + std::to_string(samples) + " samples of " +
+                       std::to_string(bits) + " bits (format " + std::to_string(format) +
+                       "): expected unsigned 8 or 16 bits or 32-bit float");
+  }
+  cv::Mat image(static_cast<int>(height), static_cast<int>(width), CV_MAKETYPE(depth, samples));
+  const size_t pixel_bytes = image.elemSize();
+  if (TIFFIsTiled(tiff)) {
+    std::uint32_t tile_width = 0, tile_height = 0;
+    TIFFGetField(tiff, TIFFTAG_TILEWIDTH, &tile_width);
+    TIFFGetField(tiff, TIFFTAG_TILELENGTH, &tile_height);
+    if (tile_width == 0 || tile_height == 0) throw InvalidInput(name + ": TIFF tiles of size 0");
+    std::vector<unsigned char> tile(TIFFTileSize(tiff));
+    for (std::uint32_t y = 0; y < height; y += tile_height) {
+      for (std::uint32_t x = 0; x < width; x += tile_width) {
+        if (TIFFReadTile(tiff, tile.data(), x, y, 0, 0) < 0) {
+          throw InvalidInput(name + ": corrupt TIFF: " + buffer.error);
+        }
+        const std::uint32_t rows = std::min(tile_height, height - y);
+        const std::uint32_t columns = std::min(tile_width, width - x);
+        for (std::uint32_t r = 0; r < rows; ++r) {
+          std::memcpy(image.ptr(static_cast<int>(y + r)) + x * pixel_bytes,
+                      tile.data() + r * tile_width * pixel_bytes, columns * pixel_bytes);
+        }
+      }
+    }
+  } else {
+    for (std::uint32_t y = 0; y < height; ++y) {
+      if (TIFFReadScanline(tiff, image.ptr(static_cast<int>(y)), y, 0) < 0) {
+        throw InvalidInput(name + ": corrupt TIFF: " + buffer.error);
+      }
+    }
+  }
+  if (samples == 3) cv::cvtColor(image, image, cv::COLOR_RGB2BGR);
+  if (samples == 4) cv::cvtColor(image, image, cv::COLOR_RGBA2BGRA);
+  return image;
+}
+
+std::string encode_tiff(const cv::Mat& image, const std::string& name) {
+  const int depth = image.depth();
+  if ((depth != CV_8U && depth != CV_16U && depth != CV_32F) || image.channels() != 1 ||
+      image.empty()) {
+    throw InvalidInput(name + ": TIFF is written with one channel of 8 or 16 bits or float, not " +
+                       cv::typeToString(image.type()));
+  }
+  TiffBuffer buffer;
+  TIFF* tiff = open_tiff(buffer, "w", name);
+  if (!tiff) throw IoError(name + ": libtiff could not start a file: " + buffer.error);
+  {
+    const TiffCloser closer{tiff};
+    TIFFSetField(tiff, TIFFTAG_IMAGEWIDTH, static_cast<std::uint32_t>(image.cols));
+    TIFFSetField(tiff, TIFFTAG_IMAGELENGTH, static_cast<std::uint32_t>(image.rows));
+    TIFFSetField(tiff, TIFFTAG_SAMPLESPERPIXEL, 1);
+    TIFFSetField(tiff, TIFFTAG_BITSPERSAMPLE, static_cast<int>(8 * image.elemSize()));
+    TIFFSetField(tiff, TIFFTAG_SAMPLEFORMAT,
+                 depth == CV_32F ? SAMPLEFORMAT_IEEEFP : SAMPLEFORMAT_UINT);
+    TIFFSetField(tiff, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_MINISBLACK);
+    TIFFSetField(tiff, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
+    TIFFSetField(tiff, TIFFTAG_COMPRESSION, COMPRESSION_LZW);  // as OpenCV writes TIFF
+    TIFFSetField(tiff, TIFFTAG_ROWSPERSTRIP, TIFFDefaultStripSize(tiff, 0));
+    for (int y = 0; y < image.rows; ++y) {
+      if (TIFFWriteScanline(tiff, const_cast<uchar*>(image.ptr(y)), y, 0) < 0) {
+        throw IoError(name + ": libtiff could not encode the image: " + buffer.error);
+      }
+    }
+  }
+  return buffer.bytes;
+}
+
+// --- EXR (OpenEXR) ----------------------------------------------------------------------------
+
+cv::Mat decode_exr(std::string_view bytes, const std::string& name) {
+  try {
+    Imf::StdISStream stream;
+    stream.str(std::string(bytes));
+    Imf::InputFile file(stream);
+    const Imath::Box2i window = file.header().dataWindow();
+    const double width = static_cast<double>(window.max.x) - window.min.x + 1;
+    const double height = static_cast<double>(window.max.y) - window.min.y + 1;
+    check_size(width, height, name);
+    const Imf::ChannelList& channels = file.header().channels();
+    std::vector<std::string> names;
+    for (auto channel = channels.begin(); channel != channels.end(); ++channel) {
+      names.emplace_back(channel.name());
+    }
+    if (names.size() != 1) {
+      throw InvalidInput(name + ": has " + std::to_string(names.size()) +
+                         " channels; a depth or mask image has one");
+    }
+    cv::Mat image(static_cast<int>(height), static_cast<int>(width), CV_32FC1);
+    Imf::FrameBuffer frame;
+    // The slice's origin is the data window's: the buffer's first pixel is (min.x, min.y).
+    char* origin =
+        reinterpret_cast<char*>(image.ptr<float>()) -
+        (static_cast<ptrdiff_t>(window.min.x) + static_cast<ptrdiff_t>(window.min.y) * image.cols) *
+            static_cast<ptrdiff_t>(sizeof(float));
+    frame.insert(names[0], Imf::Slice(Imf::FLOAT, origin, sizeof(float), image.step[0]));
+    file.setFrameBuffer(frame);
+    file.readPixels(window.min.y, window.max.y);
+    return image;
+  } catch (const InvalidInput&) {
+    throw;
+  } catch (const std::exception& error) {
+    throw InvalidInput(name + ": corrupt EXR: " + error.what());
+  }
+}
+
+std::string encode_exr(const cv::Mat& image, const std::string& name) {
+  if (image.type() != CV_32FC1 || image.empty()) {
+    throw InvalidInput(name + ": EXR is written as one float channel, not " +
+                       cv::typeToString(image.type()));
+  }
+  try {
+    Imf::StdOSStream stream;
+    Imf::Header header(image.cols, image.rows);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
+    Imf::OutputFile file(stream, header);
+    Imf::FrameBuffer frame;
+    frame.insert("Y", Imf::Slice(Imf::FLOAT, const_cast<char*>(image.ptr<char>()), sizeof(float),
+                                 image.step[0]));
+    file.setFrameBuffer(frame);
+    file.writePixels(image.rows);
+    return stream.str();
+  } catch (const std::exception& error) {
+    throw IoError(name + ": OpenEXR could not encode the image: " + error.what());
+  }
+}
+
+bool starts_with(std::string_view bytes, std::string_view prefix) {
+  return bytes.substr(0, prefix.size()) == prefix;
+}
+
+}  // namespace
+
+cv::Mat decode_image(std::string_view bytes, const std::string& name) {
+  if (starts_with(bytes, std::string_view("\x89PNG\r\n\x1a\n", 8))) return decode_png(bytes, name);
+  if (starts_with(bytes, std::string_view("II*\0", 4)) ||
+      starts_with(bytes, std::string_view("MM\0*", 4)) ||
+      starts_with(bytes, std::string_view("II+\0", 4)) ||
+      starts_with(bytes, std::string_view("MM\0+", 4))) {  // classic and BigTIFF
+    return decode_tiff(bytes, name);
+  }
+  if (starts_with(bytes, "\x76\x2f\x31\x01")) return decode_exr(bytes, name);
+  throw InvalidInput(name + ": not a PNG, TIFF or EXR image");
+}
+
+std::string encode_image(const cv::Mat& image, const std::string& extension,
+                         const std::string& name) {
+  if (extension == ".png") return encode_png(image, name);
+  if (extension == ".tif" || extension == ".tiff") return encode_tiff(image, name);
+  if (extension == ".exr") return encode_exr(image, name);
+  throw InvalidInput(name + ": unknown image format '" + extension +
+                     "' (expected .png, .tif, .tiff or .exr)");
+}
+
+}  // namespace rangefill::detail
