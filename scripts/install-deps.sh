@@ -5,7 +5,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libopencv-dev libpcl-dev libceres-dev libsuitesparse-dev
   libcgal-dev libgtest-dev libbenchmark-dev
-  nlohmann-json3-dev libcli11-dev zlib1g-dev
+  nlohmann-json3-dev libcli11-dev zlib1g-dev libpng-dev libtiff-dev libopenexr-dev
   clang-14 libclang-rt-14-dev  # libFuzzer and the sanitizer runtimes (scripts/fuzz.sh)
 )
 missing=()

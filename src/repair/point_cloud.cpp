@@ -1,23 +1,23 @@
-// The only translation unit that includes PCL's surface and feature modules.
+// Meshing point clouds: PCL's search here, its normal estimation and greedy projection in the
+// module of repair/greedy_projection.h.
 #include "rangefill/repair/point_cloud.h"
+
+#include <dlfcn.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <numeric>
 #include <set>
 #include <unordered_map>
 
-#include <pcl/console/print.h>
-
-#include <pcl/features/normal_3d.h>
-#include <pcl/point_types.h>
 #include <pcl/search/kdtree.h>
-#include <pcl/surface/gp3.h>
 
 #include "rangefill/core/errors.h"
 #include "rangefill/core/topology.h"
+#include "repair/greedy_projection.h"
 
 namespace rangefill {
 
@@ -40,16 +40,6 @@ constexpr int kCleaningRounds = 16;
 // Two faces on an edge whose normals make more than 120° are folded onto each other.
 constexpr double kFoldCosine = -0.5;
 
-Cloud::Ptr to_cloud(const std::vector<Vec3>& points) {
-  Cloud::Ptr cloud(new Cloud);
-  cloud->reserve(points.size());
-  for (const Vec3& p : points) {
-    cloud->push_back(pcl::PointXYZ(static_cast<float>(p.x()), static_cast<float>(p.y()),
-                                   static_cast<float>(p.z())));
-  }
-  return cloud;
-}
-
 double mean_spacing(const Cloud::Ptr& cloud, pcl::search::KdTree<pcl::PointXYZ>& tree) {
   if (cloud->size() < 2) return 0;
   double sum = 0;
@@ -63,71 +53,23 @@ double mean_spacing(const Cloud::Ptr& cloud, pcl::search::KdTree<pcl::PointXYZ>&
   return sum / static_cast<double>(cloud->size());
 }
 
-// The cloud's own normals, else PCL's estimate turned away from the centroid.
-std::vector<Vec3> point_normals(const Mesh& cloud, const Cloud::Ptr& xyz,
-                                const pcl::search::KdTree<pcl::PointXYZ>::Ptr& tree,
-                                int neighbours) {
-  if (cloud.has_normals()) return cloud.normals;
-  Vec3 centroid = Vec3::Zero();
-  for (const Vec3& p : cloud.positions) centroid += p;
-  centroid /= static_cast<double>(cloud.vertex_count());
-  pcl::NormalEstimation<pcl::PointXYZ, pcl::Normal> estimation;
-  estimation.setInputCloud(xyz);
-  estimation.setSearchMethod(tree);
-  estimation.setKSearch(neighbours);
-  estimation.setViewPoint(static_cast<float>(centroid.x()), static_cast<float>(centroid.y()),
-                          static_cast<float>(centroid.z()));
-  pcl::PointCloud<pcl::Normal> estimated;
-  estimation.compute(estimated);
-  std::vector<Vec3> normals;
-  normals.reserve(estimated.size());
-  for (const pcl::Normal& n : estimated) {
-    normals.push_back(-Vec3(n.normal_x, n.normal_y, n.normal_z));  // towards the viewpoint
-  }
-  return normals;
-}
-
-std::vector<Triangle> greedy_triangles(const Cloud::Ptr& xyz, const std::vector<Vec3>& normals,
-                                       double spacing, const GreedyMeshingOptions& options) {
-  pcl::PointCloud<pcl::PointNormal>::Ptr oriented(new pcl::PointCloud<pcl::PointNormal>);
-  oriented->reserve(xyz->size());
-  for (size_t i = 0; i < xyz->size(); ++i) {
-    pcl::PointNormal p;
-    p.x = (*xyz)[i].x;
-    p.y = (*xyz)[i].y;
-    p.z = (*xyz)[i].z;
-    const Vec3 n =
-        normals[i].allFinite() && normals[i].norm() > 0 ? normals[i].normalized() : Vec3::UnitZ();
-    p.normal_x = static_cast<float>(n.x());
-    p.normal_y = static_cast<float>(n.y());
-    p.normal_z = static_cast<float>(n.z());
-    oriented->push_back(p);
-  }
-  pcl::search::KdTree<pcl::PointNormal>::Ptr tree(new pcl::search::KdTree<pcl::PointNormal>);
-  tree->setInputCloud(oriented);
-  // The library prints nothing; PCL's triangulation warns on the console unless told not to.
-  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
-  pcl::GreedyProjectionTriangulation<pcl::PointNormal> greedy;
-  greedy.setSearchRadius(options.search_radius * spacing);
-  greedy.setMu(options.mu);
-  greedy.setMaximumNearestNeighbors(options.max_neighbours);
-  greedy.setMaximumSurfaceAngle(options.max_surface_angle * M_PI / 180);
-  greedy.setMinimumAngle(options.min_angle * M_PI / 180);
-  greedy.setMaximumAngle(options.max_angle * M_PI / 180);
-  greedy.setNormalConsistency(false);
-  greedy.setInputCloud(oriented);
-  greedy.setSearchMethod(tree);
-  std::vector<pcl::Vertices> polygons;
-  greedy.reconstruct(polygons);
-  std::vector<Triangle> triangles;
-  triangles.reserve(polygons.size());
-  for (const pcl::Vertices& polygon : polygons) {
-    if (polygon.vertices.size() != 3) continue;
-    triangles.push_back({static_cast<int>(polygon.vertices[0]),
-                         static_cast<int>(polygon.vertices[1]),
-                         static_cast<int>(polygon.vertices[2])});
-  }
-  return triangles;
+// The greedy projection's entry in its module (repair/greedy_projection.h), loaded on the first
+// call from beside this library.
+greedy_projection::Entry greedy_projection_entry() {
+  static const greedy_projection::Entry entry = [] {
+    Dl_info library;
+    if (dladdr(reinterpret_cast<void*>(&mesh_point_cloud), &library) == 0 || !library.dli_fname) {
+      throw ProcessingError("meshing: cannot tell where librangefill is");
+    }
+    const std::string module =
+        (std::filesystem::path(library.dli_fname).parent_path() / greedy_projection::kModule)
+            .string();
+    void* handle = dlopen(module.c_str(), RTLD_NOW | RTLD_LOCAL);
+    void* symbol = handle ? dlsym(handle, greedy_projection::kEntry) : nullptr;
+    if (!symbol) throw ProcessingError("meshing: cannot load " + module + ": " + dlerror());
+    return reinterpret_cast<greedy_projection::Entry>(symbol);
+  }();
+  return entry;
 }
 
 std::uint64_t edge_key(int a, int b) {
@@ -275,7 +217,7 @@ void make_oriented_manifold(const std::vector<Vec3>& positions, const std::vecto
 
 double mean_point_spacing(const std::vector<Vec3>& points) {
   if (points.size() < 2) return 0;
-  const Cloud::Ptr cloud = to_cloud(points);
+  const Cloud::Ptr cloud = greedy_projection::to_cloud(points);
   pcl::search::KdTree<pcl::PointXYZ> tree;
   tree.setInputCloud(cloud);
   return mean_spacing(cloud, tree);
@@ -289,15 +231,17 @@ Mesh mesh_point_cloud(const Mesh& cloud, const GreedyMeshingOptions& options) {
         options.max_angle > options.min_angle && options.normal_neighbours >= 3)) {
     throw InvalidInput("meshing: greedy projection options out of range");
   }
-  const Cloud::Ptr xyz = to_cloud(cloud.positions);
-  const pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
-  tree->setInputCloud(xyz);
-  const double spacing = mean_spacing(xyz, *tree);
+  const Cloud::Ptr xyz = greedy_projection::to_cloud(cloud.positions);
+  pcl::search::KdTree<pcl::PointXYZ> tree;
+  tree.setInputCloud(xyz);
+  const double spacing = mean_spacing(xyz, tree);
   if (!(spacing > 0)) throw ProcessingError("meshing: every point is at the same place");
-  const std::vector<Vec3> normals = point_normals(cloud, xyz, tree, options.normal_neighbours);
+  std::vector<Vec3> normals = cloud.has_normals() ? cloud.normals : std::vector<Vec3>();
+  std::vector<Triangle> triangles;
+  greedy_projection_entry()(cloud.positions, normals, spacing, options, triangles);
 
   Mesh mesh = cloud;
-  mesh.triangles = edge_manifold(cloud.positions, greedy_triangles(xyz, normals, spacing, options));
+  mesh.triangles = edge_manifold(cloud.positions, triangles);
   if (mesh.triangles.empty()) throw ProcessingError("meshing: the greedy projection made no face");
   make_oriented_manifold(cloud.positions, normals, mesh.triangles);
   if (mesh.triangles.empty()) throw ProcessingError("meshing: no face survived the clean-up");
