@@ -57,8 +57,16 @@ std::string read_file(const fs::path& path) {
   if (!file) throw IoError(path.string() + ": cannot open: " + std::strerror(errno));
   std::error_code error;
   if (fs::is_directory(path, error)) throw IoError(path.string() + ": is a directory");
-  std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  // One read of the whole file (a character iterator took 0.15 s for 20 MB); a file that grows
+  // meanwhile is read to its end.
+  file.seekg(0, std::ios::end);
+  const std::streamoff size = file.tellg();
+  file.seekg(0, std::ios::beg);
+  std::string bytes(size > 0 ? static_cast<size_t>(size) : 0, '\0');
+  file.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  bytes.resize(static_cast<size_t>(file.gcount()));
   if (file.bad()) throw IoError(path.string() + ": read error");
+  bytes.append(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
   return bytes;
 }
 
