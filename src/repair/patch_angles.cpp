@@ -1,5 +1,5 @@
-// Heavy CGAL headers (smoothing, AABB trees): the core's one translation unit that includes them
-// besides repair/fairing.cpp and repair/loop_patch.cpp.
+// CGAL's angle smoothing and Euler operations (heavy headers) on a fill and the ring of faces
+// around its loop.
 #include "rangefill/repair/patch_angles.h"
 
 #include <cmath>

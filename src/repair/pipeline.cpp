@@ -262,11 +262,14 @@ void defer_fill(const BoundaryLoop& loop, int other, RepairState& state, HoleRep
 }
 
 // Step 3 of a pass: the fills merged in hole order (Section IX), the same at any thread count; a
-// fill that would intersect one merged before it waits for the next pass.
-void merge_pass(const std::vector<const BoundaryLoop*>& loops,
+// fill that would intersect one merged before it waits for the next pass. Returns whether the
+// next pass has work: a loop deferred, or the rest of a loop filled in part (a fill whose boundary
+// is not its loop); otherwise every loop is closed or known to stay open.
+bool merge_pass(const std::vector<const BoundaryLoop*>& loops,
                 const std::vector<std::optional<Fill>>& fills, std::vector<HoleReport>& reports,
                 RepairState& state, RepairResult& result) {
   std::vector<size_t> merged;
+  bool next_pass = false;
   for (size_t i = 0; i < loops.size(); ++i) {
     if (fills[i]) {
       const auto clash = std::find_if(merged.begin(), merged.end(), [&](size_t j) {
@@ -275,12 +278,15 @@ void merge_pass(const std::vector<const BoundaryLoop*>& loops,
       if (clash == merged.end()) {
         result.restoration_matrix.push_back(merge_fill(result.mesh, *fills[i], reports[i].id));
         merged.push_back(i);
+        next_pass = next_pass || fills[i]->boundary != loops[i]->vertices;
       } else {
         defer_fill(*loops[i], reports[*clash].id, state, reports[i]);
+        next_pass = true;
       }
     }
     result.holes.push_back(std::move(reports[i]));
   }
+  return next_pass;
 }
 
 }  // namespace
@@ -317,8 +323,11 @@ RepairResult repair(const Mesh& input, const RepairOptions& options) {
     std::vector<HoleReport> reports = reports_for(chosen, pass, state);
     const std::vector<std::optional<Fill>> fills =
         fill_pass(surface, chosen, *inpainter, options, pass == options.passes - 1, state, reports);
-    merge_pass(chosen, fills, reports, state, result);
+    const bool next_pass = merge_pass(chosen, fills, reports, state, result);
     state.next_id += static_cast<int>(surface.holes.loops.size());
+    if (!next_pass)
+      break;  // the next pass would find no loop to choose (the whole mesh's topology
+              // is not built again to learn that)
   }
   result.open_loops = open_loops_of(mesh, state);
   return result;
