@@ -1,0 +1,164 @@
+// What a script pays, each figure beside a baseline measured in the same run, their ratios printed
+// at the end:
+// - start-up: `rangefill --version` spawned and waited for, beside `/bin/true` (a process and
+//   nothing else);
+// - reading: a 1 M-face PLY (a 708 × 708 height-field grid, float positions, written once into a
+//   temporary directory), binary and ASCII, by read_mesh, beside read_file of the same bytes (the
+//   file system's floor).
+// Report medians: --benchmark_repetitions=9 --benchmark_report_aggregates_only=true.
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include <benchmark/benchmark.h>
+
+#include "rangefill/io/mesh_io.h"
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+using rangefill::Mesh;
+
+constexpr int kGrid = 708;  // 2 × 708² = 1 002 528 faces
+
+// The grid, z a gentle wave so that positions are not integers.
+Mesh height_field() {
+  std::vector<rangefill::Vec3> positions;
+  std::vector<rangefill::Triangle> triangles;
+  for (int y = 0; y <= kGrid; ++y) {
+    for (int x = 0; x <= kGrid; ++x) {
+      positions.emplace_back(x, y, 5 * std::sin(0.05 * x) * std::cos(0.07 * y));
+    }
+  }
+  const auto id = [](int x, int y) { return y * (kGrid + 1) + x; };
+  for (int y = 0; y < kGrid; ++y) {
+    for (int x = 0; x < kGrid; ++x) {
+      triangles.push_back({id(x, y), id(x + 1, y), id(x + 1, y + 1)});
+      triangles.push_back({id(x, y), id(x + 1, y + 1), id(x, y + 1)});
+    }
+  }
+  Mesh mesh = rangefill::make_mesh(std::move(positions), std::move(triangles));
+  mesh.storage.position = rangefill::ScalarType::float32;
+  return mesh;
+}
+
+// The two files, written on first use and removed at exit.
+struct Files {
+  fs::path directory, binary, ascii;
+  Files() {
+    directory = fs::temp_directory_path() / ("rangefill-bench-process-" + std::to_string(getpid()));
+    fs::create_directories(directory);
+    binary = directory / "grid-binary.ply";
+    ascii = directory / "grid-ascii.ply";
+    const Mesh mesh = height_field();
+    rangefill::write_mesh(mesh, binary, {rangefill::Encoding::binary});
+    rangefill::write_mesh(mesh, ascii, {rangefill::Encoding::ascii});
+  }
+  ~Files() { fs::remove_all(directory); }
+};
+
+const Files& files() {
+  static const Files instance;
+  return instance;
+}
+
+// Spawns the program with its output to /dev/null and waits for it.
+void run_process(const char* program, const char* argument, benchmark::State& state) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  char* argv[] = {const_cast<char*>(program), const_cast<char*>(argument), nullptr};
+  pid_t pid = 0;
+  int status = 0;
+  if (posix_spawn(&pid, program, &actions, nullptr, argv, environ) != 0 ||
+      waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    state.SkipWithError((std::string("cannot run ") + program).c_str());
+  }
+  posix_spawn_file_actions_destroy(&actions);
+}
+
+void StartUp_True(benchmark::State& state) {
+  for (auto _ : state) run_process("/bin/true", nullptr, state);
+}
+
+void StartUp_RangefillVersion(benchmark::State& state) {
+  for (auto _ : state) run_process(RANGEFILL_BINARY, "--version", state);
+}
+
+void read_bytes(benchmark::State& state, const fs::path& path) {
+  for (auto _ : state) benchmark::DoNotOptimize(rangefill::read_file(path));
+  state.SetBytesProcessed(state.iterations() * static_cast<int64_t>(fs::file_size(path)));
+}
+
+void read_ply(benchmark::State& state, const fs::path& path) {
+  for (auto _ : state) benchmark::DoNotOptimize(rangefill::read_mesh(path));
+  state.SetBytesProcessed(state.iterations() * static_cast<int64_t>(fs::file_size(path)));
+}
+
+void Read_BinaryBytes(benchmark::State& state) {
+  read_bytes(state, files().binary);
+}
+void Read_BinaryPly(benchmark::State& state) {
+  read_ply(state, files().binary);
+}
+void Read_AsciiBytes(benchmark::State& state) {
+  read_bytes(state, files().ascii);
+}
+void Read_AsciiPly(benchmark::State& state) {
+  read_ply(state, files().ascii);
+}
+
+BENCHMARK(StartUp_True)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(StartUp_RangefillVersion)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(Read_BinaryBytes)->Unit(benchmark::kMillisecond);
+BENCHMARK(Read_BinaryPly)->Unit(benchmark::kMillisecond);
+BENCHMARK(Read_AsciiBytes)->Unit(benchmark::kMillisecond);
+BENCHMARK(Read_AsciiPly)->Unit(benchmark::kMillisecond);
+
+// The console report, keeping each benchmark's real time (its median when repeated).
+class RatioReporter : public benchmark::ConsoleReporter {
+ public:
+  void ReportRuns(const std::vector<Run>& runs) override {
+    for (const Run& run : runs) {
+      const std::string name = run.run_name.function_name;
+      if (run.run_type == Run::RT_Aggregate ? run.aggregate_name == "median" : !times.count(name)) {
+        times[name] = run.GetAdjustedRealTime();
+      }
+    }
+    ConsoleReporter::ReportRuns(runs);
+  }
+  std::map<std::string, double> times;  // in each benchmark's unit (ms here)
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  RatioReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  const auto ratio = [&](const char* label, const char* measured, const char* baseline) {
+    if (reporter.times.count(measured) && reporter.times.count(baseline)) {
+      std::printf("%-44s %9.2f ms  %6.2f × %s\n", label, reporter.times[measured],
+                  reporter.times[measured] / reporter.times[baseline], baseline);
+    }
+  };
+  ratio("start-up, rangefill --version", "StartUp_RangefillVersion", "StartUp_True");
+  ratio("read_mesh, 1 M faces, binary PLY", "Read_BinaryPly", "Read_BinaryBytes");
+  ratio("read_mesh, 1 M faces, ASCII PLY", "Read_AsciiPly", "Read_AsciiBytes");
+  if (reporter.times.count("Read_AsciiPly")) {
+    std::printf("%-44s %9.0f MB/s\n", "read_mesh, ASCII PLY",
+                fs::file_size(files().ascii) / 1e6 / (reporter.times["Read_AsciiPly"] / 1e3));
+  }
+  benchmark::Shutdown();
+  return 0;
+}
