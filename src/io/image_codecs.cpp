@@ -14,9 +14,11 @@
 #include <algorithm>
 #include <csetjmp>
 #include <cstdarg>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <map>
 #include <vector>
 
 #include "io/png_check.h"
@@ -27,14 +29,36 @@ namespace rangefill::detail {
 namespace {
 
 // OpenCV's limit on an image's pixels (CV_IO_MAX_IMAGE_PIXELS), which io/png_check.h applies to
-// PNG headers too: a small file must not make us allocate gigabytes.
+// PNG headers too.
 constexpr double kMaxPixels = 1 << 30;
+// No allocation is made for more than this many bytes of raw pixels per byte of the file (deflate
+// expands at most 1032-fold), beyond a first megabyte: a small file must not make us, libtiff or
+// OpenEXR reserve gigabytes for the size its header declares.
+constexpr double kMaxExpansion = 1024;
+constexpr double kFreeBytes = 1 << 20;
 
-void check_size(double width, double height, const std::string& name) {
+// A library's message (libpng, libtiff, OpenEXR) on one line: it may quote bytes of the file.
+std::string one_line(std::string text) {
+  std::replace_if(
+      text.begin(), text.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; }, ' ');
+  return text;
+}
+
+double allocation_limit(std::string_view bytes) {
+  return kFreeBytes + kMaxExpansion * static_cast<double>(bytes.size());
+}
+
+// Throws unless width × height pixels of `pixel_bytes` each fit the limits for `bytes`.
+void check_size(double width, double height, double pixel_bytes, std::string_view bytes,
+                const std::string& name) {
+  const std::string size = std::to_string(static_cast<long long>(width)) + "×" +
+                           std::to_string(static_cast<long long>(height));
   if (!(width > 0 && height > 0) || width * height > kMaxPixels) {
-    throw InvalidInput(name + ": an image of " + std::to_string(static_cast<long long>(width)) +
-                       "×" + std::to_string(static_cast<long long>(height)) +
-                       " pixels is empty or too large");
+    throw InvalidInput(name + ": an image of " + size + " pixels is empty or too large");
+  }
+  if (width * height * pixel_bytes > allocation_limit(bytes)) {
+    throw InvalidInput(name + ": declares " + size + " pixels, more than its " +
+                       std::to_string(bytes.size()) + " bytes can hold");
   }
 }
 
@@ -45,6 +69,7 @@ struct PngContext {
   std::string_view bytes;
   size_t at = 0;
   std::string* output = nullptr;
+  std::vector<png_bytep> rows;  // here, not a local: a longjmp may clobber locals set after setjmp
   char error[256] = "";
 };
 
@@ -80,9 +105,7 @@ bool decode_png_into(PngContext& context, cv::Mat& image) {
     std::snprintf(context.error, sizeof(context.error), "out of memory");
     return false;
   }
-  std::vector<png_bytep>* rows = nullptr;
   if (setjmp(png_jmpbuf(png))) {
-    delete rows;
     png_destroy_read_struct(&png, &info, nullptr);
     return false;
   }
@@ -102,11 +125,10 @@ bool decode_png_into(PngContext& context, cv::Mat& image) {
   const int depth = png_get_bit_depth(png, info) == 16 ? CV_16U : CV_8U;
   if (static_cast<double>(width) * height > kMaxPixels) png_error(png, "image too large");
   image.create(static_cast<int>(height), static_cast<int>(width), CV_MAKETYPE(depth, channels));
-  rows = new std::vector<png_bytep>(height);
-  for (png_uint_32 y = 0; y < height; ++y) (*rows)[y] = image.ptr(static_cast<int>(y));
-  png_read_image(png, rows->data());
+  context.rows.resize(height);
+  for (png_uint_32 y = 0; y < height; ++y) context.rows[y] = image.ptr(static_cast<int>(y));
+  png_read_image(png, context.rows.data());
   png_read_end(png, nullptr);
-  delete rows;
   png_destroy_read_struct(&png, &info, nullptr);
   return true;
 }
@@ -117,7 +139,7 @@ cv::Mat decode_png(std::string_view bytes, const std::string& name) {
   context.bytes = bytes;
   cv::Mat image;
   if (!decode_png_into(context, image)) {
-    throw InvalidInput(name + ": corrupt PNG: " + context.error);
+    throw InvalidInput(name + ": corrupt PNG: " + one_line(context.error));
   }
   return image;
 }
@@ -140,7 +162,7 @@ std::string encode_png(const cv::Mat& image, const std::string& name) {
   }
   if (setjmp(png_jmpbuf(png))) {
     png_destroy_write_struct(&png, &info);
-    throw IoError(name + ": libpng could not encode the image: " + context.error);
+    throw IoError(name + ": libpng could not encode the image: " + one_line(context.error));
   }
   png_set_write_fn(png, &context, png_write_bytes, png_flush_nothing);
   png_set_IHDR(png, info, image.cols, image.rows, depth == CV_16U ? 16 : 8,
@@ -213,7 +235,7 @@ int tiff_error(TIFF*, void* user_data, const char* module, const char* format, v
   if (buffer->error.empty()) {
     char text[256];
     std::vsnprintf(text, sizeof(text), format, args);
-    buffer->error = std::string(module ? module : "libtiff") + ": " + text;
+    buffer->error = one_line(std::string(module ? module : "libtiff") + ": " + text);
   }
   return 1;  // handled: libtiff prints nothing
 }
@@ -222,12 +244,16 @@ int tiff_warning(TIFF*, void*, const char*, const char*, va_list) {
   return 1;
 }
 
-// The buffer opened by libtiff ("r" or "w"), its errors and warnings kept off stderr.
+// The buffer opened by libtiff ("r" or "w"), its errors and warnings kept off stderr; reading
+// allocates within allocation_limit.
 TIFF* open_tiff(TiffBuffer& buffer, const char* mode, const std::string& name) {
   TIFFOpenOptions* options = TIFFOpenOptionsAlloc();
   TIFFOpenOptionsSetErrorHandlerExtR(options, tiff_error, &buffer);
   TIFFOpenOptionsSetWarningHandlerExtR(options, tiff_warning, &buffer);
-  TIFFOpenOptionsSetMaxSingleMemAlloc(options, static_cast<tmsize_t>(kMaxPixels) * 4);
+  if (mode[0] == 'r') {
+    TIFFOpenOptionsSetMaxSingleMemAlloc(options,
+                                        static_cast<tmsize_t>(allocation_limit(buffer.bytes)));
+  }
   TIFF* tiff = TIFFClientOpenExt(name.c_str(), mode, &buffer, tiff_read, tiff_write, tiff_seek,
                                  tiff_close, tiff_size, tiff_map, tiff_unmap, options);
   TIFFOpenOptionsFree(options);
@@ -254,7 +280,7 @@ cv::Mat decode_tiff(std::string_view bytes, const std::string& name) {
   TIFFGetFieldDefaulted(tiff, TIFFTAG_BITSPERSAMPLE, &bits);
   TIFFGetFieldDefaulted(tiff, TIFFTAG_SAMPLEFORMAT, &format);
   TIFFGetFieldDefaulted(tiff, TIFFTAG_PLANARCONFIG, &planar);
-  check_size(width, height, name);
+  check_size(width, height, std::max<int>(1, samples * bits / 8), bytes, name);
   int depth = -1;
   if (format == SAMPLEFORMAT_UINT && bits == 8) depth = CV_8U;
   if (format == SAMPLEFORMAT_UINT && bits == 16) depth = CV_16U;
@@ -330,7 +356,130 @@ std::string encode_tiff(const cv::Mat& image, const std::string& name) {
 
 // --- EXR (OpenEXR) ----------------------------------------------------------------------------
 
+// The little-endian 32-bit integer at `at`.
+std::int32_t little_endian(std::string_view bytes, size_t at) {
+  std::uint32_t value = 0;
+  for (int k = 3; k >= 0; --k) value = value << 8 | static_cast<unsigned char>(bytes[at + k]);
+  return static_cast<std::int32_t>(value);
+}
+
+// Whether an attribute value of a type OpenEXR knows has the size OpenEXR will read: it reads
+// those by their structure, not by the size the file gives (a mismatch would put the next
+// attribute elsewhere for OpenEXR than for us), and reserves what a preview or a vector declares.
+// Other types OpenEXR keeps as opaque bytes, reserved by the size given.
+bool exr_value_fits(std::string_view type, std::string_view value) {
+  static const std::map<std::string_view, size_t> fixed = {{"box2i", 16},
+                                                           {"box2f", 16},
+                                                           {"chromaticities", 32},
+                                                           {"compression", 1},
+                                                           {"deepImageState", 1},
+                                                           {"double", 8},
+                                                           {"envmap", 1},
+                                                           {"float", 4},
+                                                           {"int", 4},
+                                                           {"keycode", 28},
+                                                           {"lineOrder", 1},
+                                                           {"m33f", 36},
+                                                           {"m33d", 72},
+                                                           {"m44f", 64},
+                                                           {"m44d", 128},
+                                                           {"rational", 8},
+                                                           {"tiledesc", 9},
+                                                           {"timecode", 8},
+                                                           {"v2i", 8},
+                                                           {"v2f", 8},
+                                                           {"v2d", 16},
+                                                           {"v3i", 12},
+                                                           {"v3f", 12},
+                                                           {"v3d", 24}};
+  if (const auto known = fixed.find(type); known != fixed.end()) {
+    return value.size() == known->second;
+  }
+  if (type == "chlist") {  // entries (name, pixel type, linear, 3 reserved, x and y sampling), ""
+    size_t at = 0;
+    for (;;) {
+      const size_t end = value.find('\0', at);
+      if (end == std::string_view::npos || end - at > 255) return false;
+      if (end == at) return end + 1 == value.size();
+      at = end + 1 + 16;
+      if (at > value.size()) return false;
+    }
+  }
+  if (type == "preview") {  // width, height, then 4 bytes a pixel
+    return value.size() >= 8 && 8 + 4.0 * static_cast<std::uint32_t>(little_endian(value, 0)) *
+                                            static_cast<std::uint32_t>(little_endian(value, 4)) ==
+                                    static_cast<double>(value.size());
+  }
+  if (type == "stringvector") {  // strings, each after its length
+    for (size_t at = 0; at < value.size();) {
+      if (value.size() - at < 4) return false;
+      const std::int32_t length = little_endian(value, at);
+      if (length < 0 || static_cast<size_t>(length) > value.size() - at - 4) return false;
+      at += 4 + static_cast<size_t>(length);
+    }
+    return true;
+  }
+  if (type == "floatvector") return value.size() % 4 == 0;
+  return type != "idmanifest";  // compressed, with its own declared size: not read
+}
+
+// Walks a single-part EXR header (magic, version, then attributes: name, type, size, value, up to
+// an empty name) before OpenEXR reads it: OpenEXR reserves what an attribute's size or the data
+// window declares before it checks the file holds it. Throws InvalidInput unless every attribute
+// lies within the file and the data window fits the limits (check_size, 4 bytes a pixel).
+void check_exr_header(std::string_view bytes, const std::string& name) {
+  const auto corrupt = [&](const std::string& why) {
+    throw InvalidInput(name + ": corrupt EXR: " + why);
+  };
+  if (bytes.size() < 8) corrupt("file is truncated");
+  const std::int32_t version = little_endian(bytes, 4);
+  if (version & 0x1800) corrupt("multi-part and deep images are not read");
+  // Names of at most 31 characters, 255 with the long-names flag: OpenEXR reads no more, and
+  // would take the rest of a longer one for the next field.
+  const size_t longest = version & 0x400 ? 255 : 31;
+  size_t at = 8;
+  const auto text = [&]() {  // a null-terminated name
+    const size_t end = bytes.find('\0', at);
+    if (end == std::string_view::npos) corrupt("header is truncated");
+    if (end - at > longest) corrupt("a name is longer than " + std::to_string(longest));
+    const std::string_view word = bytes.substr(at, end - at);
+    at = end + 1;
+    return word;
+  };
+  bool window = false;
+  for (;;) {
+    const std::string_view attribute = text();
+    if (attribute.empty()) break;
+    const std::string_view type = text();
+    if (bytes.size() - at < 4) corrupt("header is truncated");
+    const std::int32_t size = little_endian(bytes, at);
+    at += 4;
+    if (size < 0 || static_cast<size_t>(size) > bytes.size() - at) {
+      corrupt("an attribute runs past the end of the file");
+    }
+    const std::string_view value = bytes.substr(at, static_cast<size_t>(size));
+    if (!exr_value_fits(type, value)) {
+      corrupt("an attribute of type " + std::string(type) + " does not fit its size");
+    }
+    if (attribute == "dataWindow" && type == "box2i") {
+      const double width =
+          static_cast<double>(little_endian(value, 8)) - little_endian(value, 0) + 1;
+      const double height =
+          static_cast<double>(little_endian(value, 12)) - little_endian(value, 4) + 1;
+      check_size(width, height, sizeof(float), bytes, name);
+      window = true;
+    }
+    if (attribute == "tiles" && type == "tiledesc") {  // a tile's buffer is reserved whole
+      check_size(static_cast<std::uint32_t>(little_endian(value, 0)),
+                 static_cast<std::uint32_t>(little_endian(value, 4)), sizeof(float), bytes, name);
+    }
+    at += static_cast<size_t>(size);
+  }
+  if (!window) corrupt("no data window");
+}
+
 cv::Mat decode_exr(std::string_view bytes, const std::string& name) {
+  check_exr_header(bytes, name);
   try {
     Imf::StdISStream stream;
     stream.str(std::string(bytes));
@@ -338,7 +487,6 @@ cv::Mat decode_exr(std::string_view bytes, const std::string& name) {
     const Imath::Box2i window = file.header().dataWindow();
     const double width = static_cast<double>(window.max.x) - window.min.x + 1;
     const double height = static_cast<double>(window.max.y) - window.min.y + 1;
-    check_size(width, height, name);
     const Imf::ChannelList& channels = file.header().channels();
     std::vector<std::string> names;
     for (auto channel = channels.begin(); channel != channels.end(); ++channel) {
@@ -362,7 +510,7 @@ cv::Mat decode_exr(std::string_view bytes, const std::string& name) {
   } catch (const InvalidInput&) {
     throw;
   } catch (const std::exception& error) {
-    throw InvalidInput(name + ": corrupt EXR: " + error.what());
+    throw InvalidInput(name + ": corrupt EXR: " + one_line(error.what()));
   }
 }
 
@@ -384,7 +532,7 @@ std::string encode_exr(const cv::Mat& image, const std::string& name) {
     file.writePixels(image.rows);
     return stream.str();
   } catch (const std::exception& error) {
-    throw IoError(name + ": OpenEXR could not encode the image: " + error.what());
+    throw IoError(name + ": OpenEXR could not encode the image: " + one_line(error.what()));
   }
 }
 

@@ -99,6 +99,16 @@ TEST(DepthFiles, DamagedTiffAndExrAreRefusedSilently) {
       EXPECT_EQ(message.find('\n'), std::string::npos);
     }
   }
+  // An EXR whose data window declares 30 000 × 30 000 pixels is refused before anything is
+  // reserved for them (3.6 GB).
+  std::string exr = read_file(dir / "a.exr");
+  const size_t window = exr.find(std::string("dataWindow\0box2i\0", 17));
+  ASSERT_NE(window, std::string::npos);
+  const std::int32_t large = 29999;
+  for (int corner : {2, 3}) std::memcpy(&exr[window + 17 + 4 + 4 * corner], &large, 4);
+  write_file_atomically(exr, dir / "large.exr");
+  EXPECT_NE(message_of([&] { read_depth_image(dir / "large.exr"); }).find("bytes can hold"),
+            std::string::npos);
   fs::remove_all(dir);
 }
 
