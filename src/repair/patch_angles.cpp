@@ -9,6 +9,7 @@
 #include <set>
 
 #include <CGAL/Polygon_mesh_processing/angle_and_area_smoothing.h>
+#include <CGAL/Polygon_mesh_processing/shape_predicates.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 
 #include "core/cgal_triangles.h"
@@ -37,6 +38,14 @@ double corner_angle(const Kernel::Point_3& p, const Kernel::Point_3& q, const Ke
 double smallest_angle(const Kernel::Point_3& p, const Kernel::Point_3& q,
                       const Kernel::Point_3& r) {
   return std::min({corner_angle(p, q, r), corner_angle(q, r, p), corner_angle(r, p, q)});
+}
+
+// The normal of the triangle (p, q, r), its length twice the area; null for a degenerate one
+// (CGAL::normal asserts on those in builds without NDEBUG, and a fill may hold one: the caller's
+// check refuses it after this pass).
+Kernel::Vector_3 normal(const Kernel::Point_3& p, const Kernel::Point_3& q,
+                        const Kernel::Point_3& r) {
+  return CGAL::cross_product(q - p, r - p);
 }
 
 bool in_fill(FaceIndex f, size_t fill_faces) {
@@ -116,15 +125,17 @@ void flip_to_max_min_angle(SurfaceMesh& surface, size_t fill_faces) {
       const auto &pa = surface.point(a), &pb = surface.point(b);
       const auto &pc = surface.point(c), &pd = surface.point(d);
       // Faces (a, b, c) and (b, a, d) become (a, d, c) and (d, b, c).
-      const auto m1 = CGAL::normal(pa, pd, pc), m2 = CGAL::normal(pd, pb, pc);
+      const auto m1 = normal(pa, pd, pc), m2 = normal(pd, pb, pc);
       if (m1 == CGAL::NULL_VECTOR || m2 == CGAL::NULL_VECTOR) continue;
       const bool tangled = surroundings.crossed_by(a, b, c) || surroundings.crossed_by(b, a, d);
       if (!tangled) {
         const double before = std::min(smallest_angle(pa, pb, pc), smallest_angle(pb, pa, pd));
         const double after = std::min(smallest_angle(pa, pd, pc), smallest_angle(pd, pb, pc));
         if (after <= before + 1e-9) continue;
-        const auto n1 = CGAL::unit_normal(pa, pb, pc), n2 = CGAL::unit_normal(pb, pa, pd);
-        if (n1 * n2 < kMinBendCosine) continue;
+        const auto n1 = normal(pa, pb, pc), n2 = normal(pb, pa, pd);
+        if (!(n1 * n2 >= kMinBendCosine * std::sqrt(n1.squared_length() * n2.squared_length()))) {
+          continue;  // bent by 60° or more, or a triangle without area
+        }
         if (m1 * n1 <= 0 || m1 * n2 <= 0 || m2 * n1 <= 0 || m2 * n2 <= 0) continue;
       }
       if (surroundings.crossed_by(a, d, c) || surroundings.crossed_by(d, b, c)) continue;
@@ -136,9 +147,15 @@ void flip_to_max_min_angle(SurfaceMesh& surface, size_t fill_faces) {
 }
 
 // Moves the fill's new vertices (from `new_vertices` on) over the fill's faces (from `fill_faces`
-// on) towards larger angles; CGAL makes no move that shrinks an angle or lets the surface
-// self-intersect, and projects each back onto the fill as it was.
+// on) towards larger angles, unless a face of the part is degenerate; CGAL makes no move that
+// shrinks an angle or lets the surface self-intersect, and projects each back onto the fill as it
+// was.
 void smooth_angles(SurfaceMesh& surface, size_t fill_faces, size_t new_vertices) {
+  // CGAL's precondition: no degenerate face (the input's or the fill's; the caller's check
+  // refuses a degenerate fill).
+  for (FaceIndex f : surface.faces()) {
+    if (pmp::is_degenerate_triangle_face(f, surface)) return;
+  }
   std::vector<FaceIndex> faces;
   for (FaceIndex f : surface.faces()) {
     if (static_cast<size_t>(f) >= fill_faces) faces.push_back(f);
