@@ -280,24 +280,30 @@ cv::Mat decode_tiff(std::string_view bytes, const std::string& name) {
   TIFFGetFieldDefaulted(tiff, TIFFTAG_BITSPERSAMPLE, &bits);
   TIFFGetFieldDefaulted(tiff, TIFFTAG_SAMPLEFORMAT, &format);
   TIFFGetFieldDefaulted(tiff, TIFFTAG_PLANARCONFIG, &planar);
-  check_size(width, height, std::max<int>(1, samples * bits / 8), bytes, name);
   int depth = -1;
   if (format == SAMPLEFORMAT_UINT && bits == 8) depth = CV_8U;
   if (format == SAMPLEFORMAT_UINT && bits == 16) depth = CV_16U;
   if (format == SAMPLEFORMAT_IEEEFP && bits == 32) depth = CV_32F;
-  if (depth < 0 || (samples > 1 && planar != PLANARCONFIG_CONTIG) || samples > 4) {
+  if (depth < 0 || samples < 1 || samples > 4 || (samples > 1 && planar != PLANARCONFIG_CONTIG)) {
     throw InvalidInput(name + ": TIFF of " + std::to_string(samples) + " samples of " +
                        std::to_string(bits) + " bits (format " + std::to_string(format) +
                        "): expected unsigned 8 or 16 bits or 32-bit float");
   }
+  const size_t pixel_bytes = static_cast<size_t>(samples) * bits / 8;
+  check_size(width, height, static_cast<double>(pixel_bytes), bytes, name);
   cv::Mat image(static_cast<int>(height), static_cast<int>(width), CV_MAKETYPE(depth, samples));
-  const size_t pixel_bytes = image.elemSize();
   if (TIFFIsTiled(tiff)) {
     std::uint32_t tile_width = 0, tile_height = 0;
     TIFFGetField(tiff, TIFFTAG_TILEWIDTH, &tile_width);
     TIFFGetField(tiff, TIFFTAG_TILELENGTH, &tile_height);
     if (tile_width == 0 || tile_height == 0) throw InvalidInput(name + ": TIFF tiles of size 0");
-    std::vector<unsigned char> tile(TIFFTileSize(tiff));
+    check_size(tile_width, tile_height, static_cast<double>(pixel_bytes), bytes, name);
+    const size_t tile_row = static_cast<size_t>(tile_width) * pixel_bytes;
+    const tmsize_t tile_bytes = TIFFTileSize(tiff);
+    if (tile_bytes < 0 || static_cast<size_t>(tile_bytes) < tile_row * tile_height) {
+      throw InvalidInput(name + ": corrupt TIFF: tiles smaller than their size says");
+    }
+    std::vector<unsigned char> tile(static_cast<size_t>(tile_bytes));
     for (std::uint32_t y = 0; y < height; y += tile_height) {
       for (std::uint32_t x = 0; x < width; x += tile_width) {
         if (TIFFReadTile(tiff, tile.data(), x, y, 0, 0) < 0) {
@@ -307,7 +313,7 @@ cv::Mat decode_tiff(std::string_view bytes, const std::string& name) {
         const std::uint32_t columns = std::min(tile_width, width - x);
         for (std::uint32_t r = 0; r < rows; ++r) {
           std::memcpy(image.ptr(static_cast<int>(y + r)) + x * pixel_bytes,
-                      tile.data() + r * tile_width * pixel_bytes, columns * pixel_bytes);
+                      tile.data() + r * tile_row, columns * pixel_bytes);
         }
       }
     }
