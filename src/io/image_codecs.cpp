@@ -12,6 +12,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <array>
 #include <csetjmp>
 #include <cstdarg>
 #include <cstdint>
@@ -429,10 +430,25 @@ bool exr_value_fits(std::string_view type, std::string_view value) {
   return type != "idmanifest";  // compressed, with its own declared size: not read
 }
 
+// The number of channels in a chlist value that exr_value_fits accepted.
+int exr_channel_count(std::string_view chlist) {
+  int count = 0;
+  for (size_t at = 0; chlist[at] != '\0'; at = chlist.find('\0', at) + 1 + 16) ++count;
+  return count;
+}
+
+// The scan lines OpenEXR's decompressor for a compression attribute reserves at once, however few
+// the image has (OpenEXR's numLinesInBuffer; the most of them for a value it does not know).
+double exr_lines_per_block(unsigned char compression) {
+  constexpr std::array<double, 10> lines = {1, 1, 1, 16, 32, 16, 32, 32, 32, 256};
+  return compression < lines.size() ? lines[compression] : 256;
+}
+
 // Walks a single-part EXR header (magic, version, then attributes: name, type, size, value, up to
-// an empty name) before OpenEXR reads it: OpenEXR reserves what an attribute's size or the data
-// window declares before it checks the file holds it. Throws InvalidInput unless every attribute
-// lies within the file and the data window fits the limits (check_size, 4 bytes a pixel).
+// an empty name) before OpenEXR reads it: OpenEXR reserves what an attribute's size, the data
+// window or its compression's block of scan lines declares before it checks the file holds it.
+// Throws InvalidInput unless every attribute lies within the file, there is one channel, and the
+// data window, a block of its lines and a tile fit the limits (check_size, 4 bytes a pixel).
 void check_exr_header(std::string_view bytes, const std::string& name) {
   const auto corrupt = [&](const std::string& why) {
     throw InvalidInput(name + ": corrupt EXR: " + why);
@@ -453,6 +469,10 @@ void check_exr_header(std::string_view bytes, const std::string& name) {
     return word;
   };
   bool window = false;
+  double width = 0;
+  double height = 0;
+  double lines_per_block = 1;
+  int channels = 0;
   for (;;) {
     const std::string_view attribute = text();
     if (attribute.empty()) break;
@@ -468,13 +488,14 @@ void check_exr_header(std::string_view bytes, const std::string& name) {
       corrupt("an attribute of type " + std::string(type) + " does not fit its size");
     }
     if (attribute == "dataWindow" && type == "box2i") {
-      const double width =
-          static_cast<double>(little_endian(value, 8)) - little_endian(value, 0) + 1;
-      const double height =
-          static_cast<double>(little_endian(value, 12)) - little_endian(value, 4) + 1;
-      check_size(width, height, sizeof(float), bytes, name);
+      width = static_cast<double>(little_endian(value, 8)) - little_endian(value, 0) + 1;
+      height = static_cast<double>(little_endian(value, 12)) - little_endian(value, 4) + 1;
       window = true;
     }
+    if (attribute == "compression" && type == "compression") {
+      lines_per_block = exr_lines_per_block(static_cast<unsigned char>(value[0]));
+    }
+    if (attribute == "channels" && type == "chlist") channels = exr_channel_count(value);
     if (attribute == "tiles" && type == "tiledesc") {  // a tile's buffer is reserved whole
       check_size(static_cast<std::uint32_t>(little_endian(value, 0)),
                  static_cast<std::uint32_t>(little_endian(value, 4)), sizeof(float), bytes, name);
@@ -482,6 +503,12 @@ void check_exr_header(std::string_view bytes, const std::string& name) {
     at += static_cast<size_t>(size);
   }
   if (!window) corrupt("no data window");
+  check_size(width, height, sizeof(float), bytes, name);
+  check_size(width, std::max(height, lines_per_block), sizeof(float), bytes, name);
+  if (channels != 1) {
+    throw InvalidInput(name + ": has " + std::to_string(channels) +
+                       " channels; a depth or mask image has one");
+  }
 }
 
 cv::Mat decode_exr(std::string_view bytes, const std::string& name) {
@@ -493,15 +520,7 @@ cv::Mat decode_exr(std::string_view bytes, const std::string& name) {
     const Imath::Box2i window = file.header().dataWindow();
     const double width = static_cast<double>(window.max.x) - window.min.x + 1;
     const double height = static_cast<double>(window.max.y) - window.min.y + 1;
-    const Imf::ChannelList& channels = file.header().channels();
-    std::vector<std::string> names;
-    for (auto channel = channels.begin(); channel != channels.end(); ++channel) {
-      names.emplace_back(channel.name());
-    }
-    if (names.size() != 1) {
-      throw InvalidInput(name + ": has " + std::to_string(names.size()) +
-                         " channels; a depth or mask image has one");
-    }
+    const std::string channel = file.header().channels().begin().name();
     cv::Mat image(static_cast<int>(height), static_cast<int>(width), CV_32FC1);
     Imf::FrameBuffer frame;
     // The slice's origin is the data window's: the buffer's first pixel is (min.x, min.y).
@@ -509,7 +528,7 @@ cv::Mat decode_exr(std::string_view bytes, const std::string& name) {
         reinterpret_cast<char*>(image.ptr<float>()) -
         (static_cast<ptrdiff_t>(window.min.x) + static_cast<ptrdiff_t>(window.min.y) * image.cols) *
             static_cast<ptrdiff_t>(sizeof(float));
-    frame.insert(names[0], Imf::Slice(Imf::FLOAT, origin, sizeof(float), image.step[0]));
+    frame.insert(channel, Imf::Slice(Imf::FLOAT, origin, sizeof(float), image.step[0]));
     file.setFrameBuffer(frame);
     file.readPixels(window.min.y, window.max.y);
     return image;

@@ -109,6 +109,32 @@ TEST(DepthFiles, DamagedTiffAndExrAreRefusedSilently) {
   write_file_atomically(exr, dir / "large.exr");
   EXPECT_NE(message_of([&] { read_depth_image(dir / "large.exr"); }).find("bytes can hold"),
             std::string::npos);
+  // One row of 32768 pixels fits the file's ~9 MB, but DWAB's decompressor reserves 256 rows at
+  // once (32 MB): the same file with ZIP's 16 rows gets past the size check and fails later.
+  exr = read_file(dir / "a.exr");
+  const std::int32_t row[] = {0, 0, 32767, 0};
+  std::memcpy(&exr[window + 17 + 4], row, sizeof(row));
+  const size_t compression = exr.find(std::string("compression\0compression\0", 24));
+  ASSERT_NE(compression, std::string::npos);
+  for (const auto& [method, refused] : {std::pair{9, true}, std::pair{3, false}}) {
+    exr[compression + 24 + 4] = static_cast<char>(method);
+    write_file_atomically(exr, dir / "row.exr");
+    const std::string message = message_of([&] { read_depth_image(dir / "row.exr"); });
+    EXPECT_EQ(message.find("bytes can hold") != std::string::npos, refused) << message;
+  }
+  // A second channel is refused before OpenEXR reads the file.
+  exr = read_file(dir / "a.exr");
+  const size_t channels = exr.find(std::string("channels\0chlist\0", 16));
+  ASSERT_NE(channels, std::string::npos);
+  std::int32_t size = 0;
+  std::memcpy(&size, &exr[channels + 16], 4);
+  const std::string entry = exr.substr(channels + 20, size - 1);  // one channel, no end mark
+  const std::int32_t doubled = size + static_cast<std::int32_t>(entry.size());
+  std::memcpy(&exr[channels + 16], &doubled, 4);
+  exr.insert(channels + 20 + entry.size(), "Z" + entry.substr(1));
+  write_file_atomically(exr, dir / "two.exr");
+  EXPECT_EQ(message_of([&] { read_depth_image(dir / "two.exr"); }),
+            (dir / "two.exr").string() + ": has 2 channels; a depth or mask image has one");
   fs::remove_all(dir);
 }
 
