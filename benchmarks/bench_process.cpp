@@ -5,6 +5,9 @@
 // - reading: a 1 M-face PLY (a 708 × 708 height-field grid, float positions, written once into a
 //   temporary directory), binary and ASCII, by read_mesh, beside read_file of the same bytes (the
 //   file system's floor).
+// - filling a depth frame (../shared/data/depth-real/livingroom-00000.png, VGA, 40 071 invalid
+//   pixels; skipped without ../shared): fill_depth by default and with `fast`, beside
+//   cv::inpaint (Navier-Stokes, radius 3) of the same pixels, all on one thread.
 // Report medians: --benchmark_repetitions=9 --benchmark_report_aggregates_only=true.
 #include <fcntl.h>
 #include <spawn.h>
@@ -18,7 +21,11 @@
 #include <string>
 
 #include <benchmark/benchmark.h>
+#include <opencv2/core/utility.hpp>
+#include <opencv2/photo.hpp>
 
+#include "rangefill/depth/fill_depth.h"
+#include "rangefill/io/depth_io.h"
 #include "rangefill/io/mesh_io.h"
 
 extern char** environ;
@@ -117,12 +124,47 @@ void Read_AsciiPly(benchmark::State& state) {
   read_ply(state, files().ascii);
 }
 
+// The frame, read on first use; empty without ../shared.
+const cv::Mat& frame() {
+  static const cv::Mat depth = [] {
+    const fs::path path = RANGEFILL_SHARED_DIR "/data/depth-real/livingroom-00000.png";
+    return fs::exists(path) ? rangefill::read_depth_image(path) : cv::Mat();
+  }();
+  return depth;
+}
+
+void fill_frame(benchmark::State& state, const rangefill::DepthFillOptions& options) {
+  if (frame().empty()) return state.SkipWithError("no ../shared/data/depth-real");
+  cv::Mat filled;
+  for (auto _ : state) rangefill::fill_depth(frame(), cv::noArray(), filled, options);
+}
+
+void Depth_Inpaint(benchmark::State& state) {
+  if (frame().empty()) return state.SkipWithError("no ../shared/data/depth-real");
+  const cv::Mat invalid = frame() == 0;
+  cv::Mat filled;
+  for (auto _ : state) cv::inpaint(frame(), invalid, filled, 3, cv::INPAINT_NS);
+}
+
+void Depth_FillDefault(benchmark::State& state) {
+  fill_frame(state, {});
+}
+
+void Depth_FillFast(benchmark::State& state) {
+  rangefill::DepthFillOptions options;
+  options.fast = true;
+  fill_frame(state, options);
+}
+
 BENCHMARK(StartUp_True)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(StartUp_RangefillVersion)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(Read_BinaryBytes)->Unit(benchmark::kMillisecond);
 BENCHMARK(Read_BinaryPly)->Unit(benchmark::kMillisecond);
 BENCHMARK(Read_AsciiBytes)->Unit(benchmark::kMillisecond);
 BENCHMARK(Read_AsciiPly)->Unit(benchmark::kMillisecond);
+BENCHMARK(Depth_Inpaint)->Unit(benchmark::kMillisecond);
+BENCHMARK(Depth_FillDefault)->Unit(benchmark::kMillisecond);
+BENCHMARK(Depth_FillFast)->Unit(benchmark::kMillisecond);
 
 // The console report, keeping each benchmark's real time (its median when repeated).
 class RatioReporter : public benchmark::ConsoleReporter {
@@ -142,6 +184,7 @@ class RatioReporter : public benchmark::ConsoleReporter {
 }  // namespace
 
 int main(int argc, char** argv) {
+  cv::setNumThreads(1);  // cv::inpaint and fill_depth on one thread
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   RatioReporter reporter;
@@ -155,6 +198,8 @@ int main(int argc, char** argv) {
   ratio("start-up, rangefill --version", "StartUp_RangefillVersion", "StartUp_True");
   ratio("read_mesh, 1 M faces, binary PLY", "Read_BinaryPly", "Read_BinaryBytes");
   ratio("read_mesh, 1 M faces, ASCII PLY", "Read_AsciiPly", "Read_AsciiBytes");
+  ratio("fill_depth, VGA frame", "Depth_FillDefault", "Depth_Inpaint");
+  ratio("fill_depth fast, VGA frame", "Depth_FillFast", "Depth_Inpaint");
   if (reporter.times.count("Read_AsciiPly")) {
     std::printf("%-44s %9.0f MB/s\n", "read_mesh, ASCII PLY",
                 fs::file_size(files().ascii) / 1e6 / (reporter.times["Read_AsciiPly"] / 1e3));

@@ -17,14 +17,14 @@ void check_depth_type(int type, const std::string& who) {
 cv::Mat depth_in_metres(cv::InputArray depth) {
   cv::Mat z;
   depth.getMat().convertTo(z, CV_32F, depth.type() == CV_16UC1 ? 1e-3 : 1.0);
-  z.forEach<float>([](float& value, const int*) {
-    if (!(value > 0 && value < std::numeric_limits<float>::infinity())) value = 0;
-  });
+  for (int row = 0; row < z.rows; ++row) {
+    float* values = z.ptr<float>(row);
+    for (int col = 0; col < z.cols; ++col) {
+      const float value = values[col];
+      values[col] = value > 0 && value < std::numeric_limits<float>::infinity() ? value : 0;
+    }
+  }
   return z;
-}
-
-bool same_surface(float a, float b, double discontinuity) {
-  return std::max(a, b) <= (1 + discontinuity) * std::min(a, b);
 }
 
 cv::Mat invalid_depth_mask(cv::InputArray depth) {

@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 #include <opencv2/imgproc.hpp>
 
+#include "depth/fill_along_lines.h"
 #include "rangefill/core/errors.h"
 #include "rangefill/core/parallel.h"
 #include "rangefill/repair/range_image.h"
@@ -186,26 +187,49 @@ struct HoleOutcome {
   bool at_edge = false;
 };
 
+// The bounding box of hole `label` (connectedComponentsWithStats' `stats`).
+cv::Rect hole_box(const cv::Mat& stats, int label) {
+  return {stats.at<int>(label, cv::CC_STAT_LEFT), stats.at<int>(label, cv::CC_STAT_TOP),
+          stats.at<int>(label, cv::CC_STAT_WIDTH), stats.at<int>(label, cv::CC_STAT_HEIGHT)};
+}
+
+// Whether hole `label` is to be filled (kind filled) or left for a reason the options give
+// (too large, at the border when kept), before anything is read of it.
+HoleOutcome hole_outcome_by_size(const cv::Mat& stats, int label, cv::Size image,
+                                 const DepthFillOptions& options) {
+  const cv::Rect box = hole_box(stats, label);
+  HoleOutcome outcome;
+  outcome.pixels = stats.at<int>(label, cv::CC_STAT_AREA);
+  const bool touches_border = box.x == 0 || box.y == 0 || box.x + box.width == image.width ||
+                              box.y + box.height == image.height;
+  if (options.max_hole_pixels > 0 && outcome.pixels > options.max_hole_pixels) {
+    outcome.kind = HoleOutcome::too_large;
+  } else if (touches_border && options.keep_border) {
+    outcome.kind = HoleOutcome::at_border;
+  }
+  return outcome;
+}
+
+// Writes a fill of `metres` at pixel `p` of `out` (of the depth's type). Pixel by pixel:
+// cv::Mat::copyTo with a mask may store whole vectors, neighbours included, which would race with
+// the holes filled at once around this one.
+void write_fill(cv::Mat& out, cv::Point p, float metres) {
+  if (out.type() == CV_16UC1) {  // millimetres, rounded; a fill is never 0 (invalid)
+    out.at<std::uint16_t>(p) =
+        std::max<std::uint16_t>(cv::saturate_cast<std::uint16_t>(1000.0 * metres), 1);
+  } else {
+    out.at<float>(p) = metres;
+  }
+}
+
 // Fills hole `label` of `labels` (connectedComponentsWithStats' labels and `stats`) into `out`,
 // the output image (of the depth's type), at the hole's pixels only.
 HoleOutcome fill_depth_hole(const cv::Mat& z, const cv::Mat& data, const cv::Mat& labels,
                             const cv::Mat& stats, int label, const Inpainter& inpainter,
                             const DepthFillOptions& options, cv::Mat& out) {
-  const cv::Rect box(stats.at<int>(label, cv::CC_STAT_LEFT), stats.at<int>(label, cv::CC_STAT_TOP),
-                     stats.at<int>(label, cv::CC_STAT_WIDTH),
-                     stats.at<int>(label, cv::CC_STAT_HEIGHT));
-  HoleOutcome outcome;
-  outcome.pixels = stats.at<int>(label, cv::CC_STAT_AREA);
-  if (options.max_hole_pixels > 0 && outcome.pixels > options.max_hole_pixels) {
-    outcome.kind = HoleOutcome::too_large;
-    return outcome;
-  }
-  const bool touches_border =
-      box.x == 0 || box.y == 0 || box.x + box.width == z.cols || box.y + box.height == z.rows;
-  if (touches_border && options.keep_border) {
-    outcome.kind = HoleOutcome::at_border;
-    return outcome;
-  }
+  HoleOutcome outcome = hole_outcome_by_size(stats, label, z.size(), options);
+  if (outcome.kind != HoleOutcome::filled) return outcome;
+  const cv::Rect box = hole_box(stats, label);
   const int m = options.margin;
   const cv::Rect window = cv::Rect(box.x - m, box.y - m, box.width + 2 * m, box.height + 2 * m) &
                           cv::Rect(0, 0, z.cols, z.rows);
@@ -219,22 +243,61 @@ HoleOutcome fill_depth_hole(const cv::Mat& z, const cv::Mat& data, const cv::Mat
   cv::Mat window_z = z(window);
   if (options.reach > 0) extend_source_beyond_reach(window_z, source, options.reach);
   const cv::Mat fill = fill_from_source(window_z, hole, source, inpainter, options);
-  // Pixel by pixel: cv::Mat::copyTo with a mask may store whole vectors, neighbours included,
-  // which would race with the holes around this one.
   for (int row = 0; row < window.height; ++row) {
     for (int col = 0; col < window.width; ++col) {
-      if (!hole.at<std::uint8_t>(row, col)) continue;
-      const float metres = fill.at<float>(row, col);
-      const cv::Point p(window.x + col, window.y + row);
-      if (out.type() == CV_16UC1) {  // millimetres, rounded; a fill is never 0 (invalid)
-        out.at<std::uint16_t>(p) =
-            std::max<std::uint16_t>(cv::saturate_cast<std::uint16_t>(1000.0 * metres), 1);
-      } else {
-        out.at<float>(p) = metres;
+      if (hole.at<std::uint8_t>(row, col)) {
+        write_fill(out, cv::Point(window.x + col, window.y + row), fill.at<float>(row, col));
       }
     }
   }
   return outcome;
+}
+
+// The pixels of the holes whose label maps to non-zero in `chosen` (CV_8UC1, 255 there), given
+// the labels and the mask of all holes (label > 0), which is returned itself when all are chosen.
+cv::Mat holes_mask(const cv::Mat& labels, const std::vector<std::uint8_t>& chosen,
+                   const cv::Mat& all_holes) {
+  if (std::all_of(chosen.begin() + 1, chosen.end(), [](std::uint8_t c) { return c != 0; })) {
+    return all_holes;
+  }
+  cv::Mat mask(labels.size(), CV_8U);
+  for (int row = 0; row < labels.rows; ++row) {
+    const int* label = labels.ptr<int>(row);
+    std::uint8_t* value = mask.ptr<std::uint8_t>(row);
+    for (int col = 0; col < labels.cols; ++col) value[col] = chosen[label[col]] ? 255 : 0;
+  }
+  return mask;
+}
+
+// fill_depth with options.fast: the holes to fill (`all_holes`, but those left for their size)
+// at once by fill_along_lines.
+std::vector<HoleOutcome> fill_depth_along_lines(const cv::Mat& z, const cv::Mat& data,
+                                                const cv::Mat& labels, const cv::Mat& stats,
+                                                const cv::Mat& all_holes,
+                                                const DepthFillOptions& options, cv::Mat& out) {
+  std::vector<HoleOutcome> outcomes(std::max(0, stats.rows - 1));
+  std::vector<std::uint8_t> to_fill_label(stats.rows, 0);
+  for (size_t i = 0; i < outcomes.size(); ++i) {
+    outcomes[i] = hole_outcome_by_size(stats, static_cast<int>(i) + 1, z.size(), options);
+    if (outcomes[i].kind == HoleOutcome::filled) to_fill_label[i + 1] = 255;
+  }
+  const cv::Mat to_fill = holes_mask(labels, to_fill_label, all_holes);
+  const cv::Mat fill = fill_along_lines(z, data, to_fill, options.discontinuity, options.threads);
+  // A hole is filled whole or not at all (fill_along_lines fills a pixel's 8 neighbours in the
+  // round after it): one without a fill had no data on any line through it.
+  for (int row = 0; row < z.rows; ++row) {
+    const std::uint8_t* chosen = to_fill.ptr<std::uint8_t>(row);
+    const float* metres = fill.ptr<float>(row);
+    for (int col = 0; col < z.cols; ++col) {
+      if (!chosen[col]) continue;
+      if (metres[col] > 0) {
+        write_fill(out, cv::Point(col, row), metres[col]);
+      } else {
+        outcomes[labels.at<int>(row, col) - 1].kind = HoleOutcome::without_support;
+      }
+    }
+  }
+  return outcomes;
 }
 
 }  // namespace
@@ -251,9 +314,11 @@ DepthFillStats fill_depth(cv::InputArray depth_in, cv::InputArray mask_in, cv::O
                           const DepthFillOptions& options) {
   check_depth_type(depth_in.type(), "fill_depth");
   const cv::Mat depth = depth_in.getMat();
-  cv::Mat to_fill;
+  const cv::Mat z = depth_in_metres(depth);
+  cv::Mat to_fill, data;
   if (mask_in.empty()) {
-    to_fill = invalid_depth_mask(depth);
+    to_fill = z == 0;
+    data = to_fill == 0;
   } else {
     if (mask_in.type() != CV_8UC1) {
       throw InvalidInput("fill_depth: mask must be CV_8UC1, not " +
@@ -264,6 +329,7 @@ DepthFillStats fill_depth(cv::InputArray depth_in, cv::InputArray mask_in, cv::O
                          size_text(depth.size()));
     }
     to_fill = mask_in.getMat() != 0;
+    data = (z > 0) & (to_fill == 0);
   }
   if (!(options.discontinuity > 0) || options.margin < 1 || options.max_hole_pixels < 0 ||
       options.threads < 1) {
@@ -272,25 +338,27 @@ DepthFillStats fill_depth(cv::InputArray depth_in, cv::InputArray mask_in, cv::O
         "max_hole_pixels not negative");
   }
   const std::unique_ptr<Inpainter> inpainter =
-      make_inpainter(options.inpainter, options.inpainting);
-  const cv::Mat z = depth_in_metres(depth);
-  const cv::Mat data = (z > 0) & (to_fill == 0);
+      options.fast ? nullptr : make_inpainter(options.inpainter, options.inpainting);
 
   cv::Mat labels, stats, centroids;
   const int components = cv::connectedComponentsWithStats(to_fill, labels, stats, centroids, 8);
   depth.copyTo(filled);
   cv::Mat out = filled.getMat();
-  // Holes are independent: each reads the input only and writes its own pixels, so they can run
-  // at once; outcomes (and a failure, the first in hole order) are taken in hole order.
   std::vector<HoleOutcome> outcomes(std::max(0, components - 1));
   std::vector<std::exception_ptr> failures(outcomes.size());
-  parallel_for(static_cast<int>(outcomes.size()), options.threads, [&](int i) {
-    try {
-      outcomes[i] = fill_depth_hole(z, data, labels, stats, i + 1, *inpainter, options, out);
-    } catch (...) {
-      failures[i] = std::current_exception();
-    }
-  });
+  if (options.fast) {
+    outcomes = fill_depth_along_lines(z, data, labels, stats, to_fill, options, out);
+  } else {
+    // Holes are independent: each reads the input only and writes its own pixels, so they can
+    // run at once; outcomes (and a failure, the first in hole order) are taken in hole order.
+    parallel_for(static_cast<int>(outcomes.size()), options.threads, [&](int i) {
+      try {
+        outcomes[i] = fill_depth_hole(z, data, labels, stats, i + 1, *inpainter, options, out);
+      } catch (...) {
+        failures[i] = std::current_exception();
+      }
+    });
+  }
   DepthFillStats result;
   result.holes = static_cast<int>(outcomes.size());
   std::vector<std::uint8_t> filled_label(components, 0);
@@ -320,10 +388,7 @@ DepthFillStats fill_depth(cv::InputArray depth_in, cv::InputArray mask_in, cv::O
       left->pixels += outcome.pixels;
     }
   }
-  result.filled_mask = cv::Mat::zeros(depth.size(), CV_8U);
-  result.filled_mask.forEach<std::uint8_t>([&](std::uint8_t& value, const int* position) {
-    value = filled_label[labels.at<int>(position[0], position[1])];
-  });
+  result.filled_mask = holes_mask(labels, filled_label, to_fill);
   return result;
 }
 

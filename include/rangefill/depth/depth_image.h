@@ -5,6 +5,7 @@
 // negative or not finite; 16-bit files hold 0 there, float files 0 or NaN.
 #pragma once
 
+#include <algorithm>
 #include <string>
 
 #include <opencv2/core.hpp>
@@ -23,6 +24,8 @@ cv::Mat invalid_depth_mask(cv::InputArray depth);
 
 /// Depths a, b (any unit, > 0) lie on one surface unless the larger exceeds the smaller by more
 /// than `discontinuity` (relative): the depth jump of an occluding edge.
-bool same_surface(float a, float b, double discontinuity);
+inline bool same_surface(float a, float b, double discontinuity) {
+  return std::max(a, b) <= (1 + discontinuity) * std::min(a, b);
+}
 
 }  // namespace rangefill

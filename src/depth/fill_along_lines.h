@@ -1,0 +1,28 @@
+// fill_depth's fast mode (DepthFillOptions::fast): each pixel interpolated between the valid
+// pixels it sees along 4 lines, under the occlusion rule of fill_depth.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+namespace rangefill {
+
+/// Fills the pixels of `to_fill` (CV_8UC1, non-zero to fill) from the pixels of `data` (CV_8UC1)
+/// of `z` (CV_32FC1, metres). Returns CV_32FC1 metres at the pixels filled, 0 elsewhere: a pixel
+/// is left only when no pixel of `data` lies on its row, its column or its diagonals, nor beyond
+/// pixels filled in an earlier round.
+///
+/// Along each of the 4 lines through a pixel, the nearest data pixels on either side are its
+/// ends. Two ends on one surface (same_surface with `discontinuity`) give the linear interpolation
+/// between them in inverse depth, a plane of the scene being linear in the pixel there, weighted
+/// by 1 / span²; otherwise each end is a constant guess weighted by 1 / distance². Interpolations
+/// are preferred to constants, and among either, the far surface to the near: the weighted mean
+/// of those within `discontinuity` of the farthest (the background goes on behind an occluder, as
+/// in fill_depth's step 2), among those that come from no more than 4 pixels beyond the nearest
+/// (a surface seen far away along one line, across a large invalid region, does not override the
+/// near one).
+/// O(pixels), no window per hole. Pixels left after a round are filled in the next from those
+/// filled, until none is left or a round fills none.
+cv::Mat fill_along_lines(const cv::Mat& z, const cv::Mat& data, const cv::Mat& to_fill,
+                         double discontinuity, int threads);
+
+}  // namespace rangefill
