@@ -99,10 +99,8 @@ class LastSeen {
 
   // Marks the data pixels of row `row` as last seen on their lines.
   void see_row(int row) {
-    const std::array<int, 3> first_line = {0, inverse_.rows - row, row};
-    for (int kind = 0; kind < 3; ++kind) {
-      see(inverse_.ptr<float>(row), inverse_.cols, row, at_[kind].data() + first_line[kind]);
-    }
+    see(inverse_.ptr<float>(row), inverse_.cols, row, at_[0].data(),
+        at_[1].data() + inverse_.rows - row, at_[2].data() + row);
   }
 
   // The last data pixels seen on the column and diagonals through (row, col).
@@ -119,9 +117,15 @@ class LastSeen {
   }
 
  private:
-  // A select over contiguous memory, written so that GCC vectorises it.
-  static void see(const float* __restrict values, int cols, int row, int* __restrict at) {
-    for (int col = 0; col < cols; ++col) at[col] = values[col] > 0 ? row : at[col];
+  // Selects over contiguous memory, written so that GCC vectorises them.
+  static void see(const float* __restrict values, int cols, int row, int* __restrict column,
+                  int* __restrict diagonal, int* __restrict anti_diagonal) {
+    for (int col = 0; col < cols; ++col) {
+      const int data = -static_cast<int>(values[col] > 0);  // all bits set at data
+      column[col] = (row & data) | (column[col] & ~data);
+      diagonal[col] = (row & data) | (diagonal[col] & ~data);
+      anti_diagonal[col] = (row & data) | (anti_diagonal[col] & ~data);
+    }
   }
 
   const cv::Mat& inverse_;
@@ -142,8 +146,8 @@ struct Round {
   }
 };
 
-// Calls run(first, last) for every run [first, last) of non-zero bytes of `row` (`cols` long),
-// skipping zeros 8 at a time.
+// Calls run(first, last) for every run [first, last) of non-zero bytes of `row` (`cols` long,
+// 8 bytes at a time over zeros and over bytes of 255).
 template <typename Run>
 void for_each_run(const std::uint8_t* row, int cols, Run run) {
   int col = 0;
@@ -153,6 +157,9 @@ void for_each_run(const std::uint8_t* row, int cols, Run run) {
     while (col < cols && !row[col]) ++col;
     if (col == cols) return;
     const int first = col;
+    while (col + 8 <= cols && (std::memcpy(&word, row + col, 8), word == ~std::uint64_t{0})) {
+      col += 8;
+    }
     while (col < cols && row[col]) ++col;
     run(first, col);
   }
@@ -241,7 +248,10 @@ cv::Mat fill_along_lines(const cv::Mat& z, const cv::Mat& data, const cv::Mat& t
     const float* depth = z.ptr<float>(row);
     const std::uint8_t* valid = data.ptr<std::uint8_t>(row);
     float* values = inverse.ptr<float>(row);
-    for (int col = 0; col < z.cols; ++col) values[col] = valid[col] ? 1 / depth[col] : 0;
+    for (int col = 0; col < z.cols; ++col) {  // no branch, so that GCC vectorises it
+      const float data = static_cast<float>(valid[col] != 0);
+      values[col] = data / (depth[col] + (1 - data));  // 1 / z at data, 0 elsewhere
+    }
   }
   const GuessRules rules(discontinuity, std::max(z.rows, z.cols));
   const int bands = std::min(threads, z.rows);
@@ -277,12 +287,14 @@ cv::Mat fill_along_lines(const cv::Mat& z, const cv::Mat& data, const cv::Mat& t
       const float* metres = filled.ptr<float>(row);
       std::uint8_t* to_fill_next = left.ptr<std::uint8_t>(row);
       float* values = inverse.ptr<float>(row);
-      for (int col = 0; col < z.cols; ++col) {
-        if (!to_fill_next[col] || metres[col] == 0) continue;
-        values[col] = 1 / metres[col];
-        to_fill_next[col] = 0;
-        progress = true;
-      }
+      for_each_run(to_fill_next, z.cols, [&](int first, int last) {
+        for (int col = first; col < last; ++col) {
+          if (metres[col] == 0) continue;
+          values[col] = 1 / metres[col];
+          to_fill_next[col] = 0;
+          progress = true;
+        }
+      });
     }
     if (!progress) break;
   }

@@ -341,7 +341,8 @@ DepthFillStats fill_depth(cv::InputArray depth_in, cv::InputArray mask_in, cv::O
       options.fast ? nullptr : make_inpainter(options.inpainter, options.inpainting);
 
   cv::Mat labels, stats, centroids;
-  const int components = cv::connectedComponentsWithStats(to_fill, labels, stats, centroids, 8);
+  const int components =
+      cv::connectedComponentsWithStats(to_fill, labels, stats, centroids, 8, CV_32S, cv::CCL_BBDT);
   depth.copyTo(filled);
   cv::Mat out = filled.getMat();
   std::vector<HoleOutcome> outcomes(std::max(0, components - 1));

@@ -248,8 +248,9 @@ cv::Mat depth_with_hole(int row, int col) {
   return depth;
 }
 
-// `rangefill depth IN -o OUT` fills 16-bit PNG and float TIFF/EXR, refuses to write over its input,
-// and names the file in one-line errors: a mask of another size, an unreadable image.
+// `rangefill depth IN -o OUT` fills 16-bit PNG and float TIFF/EXR, with a back-end or --fast,
+// refuses to write over its input, and names the file in one-line errors: a mask of another size,
+// an unreadable image.
 TEST(Cli, DepthFillsOneImage) {
   const fs::path dir = testing::temporary_directory("cli-depth");
   write_depth_image(depth_with_hole(10, 20), dir / "in.png");
@@ -270,6 +271,19 @@ TEST(Cli, DepthFillsOneImage) {
   const cv::Mat filled = read_depth_image(dir / "out.exr");
   ASSERT_EQ(filled.type(), CV_32FC1);
   EXPECT_LT(cv::norm(filled, cv::Mat(48, 64, CV_32F, cv::Scalar(1.5f)), cv::NORM_INF), 1e-6);
+
+  // --fast fills along lines instead of a back-end; the JSON report times the fill alone.
+  const Outcome fast = run("depth --fast --json " + (dir / "in.png").string() + " -o " +
+                           (dir / "fast.png").string());
+  ASSERT_EQ(fast.exit_code, 0) << fast.err;
+  const nlohmann::json fast_report = nlohmann::json::parse(fast.out);
+  EXPECT_EQ(fast_report["filled_pixels"].get<int>(), 81);
+  EXPECT_LE(fast_report["fill_seconds"].get<double>(), fast_report["seconds"].get<double>());
+  EXPECT_EQ(cv::countNonZero(read_depth_image(dir / "fast.png") != 1500), 0);
+  EXPECT_EQ(run("depth --fast --inpainter ns " + (dir / "in.png").string() + " -o " +
+                (dir / "f.png").string())
+                .exit_code,
+            2);
 
   const std::string before = slurp(dir / "in.png");
   EXPECT_EQ(
