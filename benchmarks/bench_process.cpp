@@ -7,9 +7,11 @@
 //   file system's floor).
 // - filling a depth frame (../shared/data/depth-real/livingroom-00000.png, VGA, 40 071 invalid
 //   pixels; skipped without ../shared): fill_depth by default and with `fast`, beside
-//   cv::inpaint (Navier-Stokes, radius 3) of the same pixels, all on one thread.
+//   cv::inpaint (Navier-Stokes, radius 3) of the same pixels, all on one thread, with the rangefill
+//   command's malloc settings.
 // Report medians: --benchmark_repetitions=9 --benchmark_report_aggregates_only=true.
 #include <fcntl.h>
+#include <malloc.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -185,6 +187,9 @@ class RatioReporter : public benchmark::ConsoleReporter {
 
 int main(int argc, char** argv) {
   cv::setNumThreads(1);  // cv::inpaint and fill_depth on one thread
+  // The rangefill command's malloc settings (tools/rangefill/main.cpp): freed blocks are kept.
+  mallopt(M_MMAP_THRESHOLD, 256 << 20);
+  mallopt(M_TRIM_THRESHOLD, 512 << 20);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   RatioReporter reporter;
