@@ -1,6 +1,9 @@
 #include "rangefill/core/intersection.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
 #include <mutex>
 #include <numeric>
 #include <set>
@@ -11,17 +14,111 @@ namespace rangefill {
 
 using namespace cgal_triangles;
 
+// The faces in a uniform grid of cubes three times their mean extent, each face listed in the
+// cell of its bounding box's low corner: a query reads the cells its own box meets and those one
+// cell lower, so its cost follows the faces near it, not the mesh. Faces larger than a cell are
+// checked by every query.
 struct IntersectionIndex::Tree {
-  std::vector<CgalTriangle> triangles;
+  std::vector<Vec3> positions;
   std::vector<Triangle> corners;
-  AabbTree tree;
-  std::once_flag built;  // the tree is built on the first query, by whichever thread asks
+  std::once_flag built;  // the grid is built on the first query, by whichever thread asks
+  Vec3 origin = Vec3::Zero();
+  double cell = 1;
+  std::vector<std::pair<std::uint64_t, int>> cell_faces;  // (cell key, face), sorted
+  std::vector<int> large_faces;
+
+  using Cells = std::array<std::array<long long, 2>, 3>;  // first and last cell on each axis
+
+  std::pair<Vec3, Vec3> box(int face) const {
+    const Triangle& t = corners[face];
+    const Vec3 &p = positions[t[0]], &q = positions[t[1]], &r = positions[t[2]];
+    return {p.cwiseMin(q).cwiseMin(r), p.cwiseMax(q).cwiseMax(r)};
+  }
+  Cells cells(const Vec3& low, const Vec3& high) const {
+    Cells range;
+    for (int axis = 0; axis < 3; ++axis) {
+      for (int side = 0; side < 2; ++side) {
+        double at = std::floor(((side ? high : low)[axis] - origin[axis]) / cell);
+        if (std::isnan(at)) at = side ? kAxisCells : 0;  // all cells
+        range[axis][side] =
+            static_cast<long long>(std::clamp(at, 0.0, static_cast<double>(kAxisCells - 1)));
+      }
+    }
+    return range;
+  }
+  static long long count(const Cells& range) {
+    long long n = 1;
+    for (const auto& [first, last] : range) n *= last - first + 1;
+    return n;
+  }
+  template <typename Visit>
+  static void for_each_key(const Cells& range, Visit visit) {
+    for (long long z = range[2][0]; z <= range[2][1]; ++z) {
+      for (long long y = range[1][0]; y <= range[1][1]; ++y) {
+        for (long long x = range[0][0]; x <= range[0][1]; ++x) {
+          visit(static_cast<std::uint64_t>(x | y << 21 | z << 42));
+        }
+      }
+    }
+  }
+  static constexpr long long kAxisCells = 1 << 21;
+
+  void build() {
+    const int face_count = static_cast<int>(corners.size());
+    Vec3 low = Vec3::Constant(std::numeric_limits<double>::max()), high = -low;
+    double extent = 0;
+    for (int face = 0; face < face_count; ++face) {
+      const auto [face_low, face_high] = box(face);
+      low = low.cwiseMin(face_low);
+      high = high.cwiseMax(face_high);
+      extent += (face_high - face_low).maxCoeff();
+    }
+    origin = low;
+    // No more than kAxisCells cells along an axis.
+    cell = std::max({3 * extent / face_count, (high - low).maxCoeff() / (kAxisCells - 2),
+                     std::numeric_limits<double>::min()});
+    cell_faces.reserve(face_count);
+    for (int face = 0; face < face_count; ++face) {
+      const auto [face_low, face_high] = box(face);
+      if ((face_high - face_low).maxCoeff() > cell) {
+        large_faces.push_back(face);
+      } else {
+        for_each_key(cells(face_low, face_low),
+                     [&](std::uint64_t key) { cell_faces.emplace_back(key, face); });
+      }
+    }
+    std::sort(cell_faces.begin(), cell_faces.end());
+  }
+
+  // Faces whose bounding box meets [low, high], ascending.
+  std::vector<int> candidates(const Vec3& low, const Vec3& high) const {
+    std::vector<int> faces;
+    const Cells range = cells(low - Vec3::Constant(cell), high);
+    if (count(range) > static_cast<long long>(cell_faces.size())) {  // as many cells as entries
+      faces.resize(corners.size());
+      std::iota(faces.begin(), faces.end(), 0);
+    } else {
+      faces = large_faces;
+      for_each_key(range, [&](std::uint64_t key) {
+        auto at = std::lower_bound(cell_faces.begin(), cell_faces.end(), std::make_pair(key, 0));
+        for (; at != cell_faces.end() && at->first == key; ++at) faces.push_back(at->second);
+      });
+      std::sort(faces.begin(), faces.end());
+      faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    }
+    faces.erase(std::remove_if(faces.begin(), faces.end(),
+                               [&](int face) {
+                                 const auto [face_low, face_high] = box(face);
+                                 return (face_low.array() > high.array()).any() ||
+                                        (face_high.array() < low.array()).any();
+                               }),
+                faces.end());
+    return faces;
+  }
 };
 
 IntersectionIndex::IntersectionIndex(const Mesh& mesh) : tree_(std::make_unique<Tree>()) {
-  std::vector<int> all(mesh.face_count());
-  std::iota(all.begin(), all.end(), 0);
-  tree_->triangles = to_triangles(mesh, all);
+  tree_->positions = mesh.positions;
   tree_->corners = mesh.triangles;
 }
 
@@ -71,27 +168,21 @@ std::pair<std::array<bool, 3>, std::array<bool, 3>> shared_corners(const Triangl
 std::vector<int> IntersectionIndex::intersecting_faces(const Vec3& a, const Vec3& b, const Vec3& c,
                                                        const Triangle& corners) const {
   std::vector<int> faces;
-  if (tree_->triangles.empty()) return faces;
-  std::call_once(tree_->built, [this] {
-    tree_->tree.insert(tree_->triangles.cbegin(), tree_->triangles.cend());
-    tree_->tree.build();
-  });
+  if (tree_->corners.empty()) return faces;
+  std::call_once(tree_->built, [this] { tree_->build(); });
   const std::array<Point, 3> query = {to_point(a), to_point(b), to_point(c)};
   const CgalTriangle triangle(query[0], query[1], query[2]);
   if (triangle.is_degenerate()) return faces;
-  std::vector<Primitive::Id> hits;
-  tree_->tree.all_intersected_primitives(triangle, std::back_inserter(hits));
-  for (const auto& hit : hits) {
-    const int face = static_cast<int>(hit - tree_->triangles.cbegin());
+  for (const int face : tree_->candidates(a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c))) {
     const Triangle& u = tree_->corners[face];
+    const std::array<Point, 3> other = {to_point(tree_->positions[u[0]]),
+                                        to_point(tree_->positions[u[1]]),
+                                        to_point(tree_->positions[u[2]])};
+    const CgalTriangle other_triangle(other[0], other[1], other[2]);
+    if (other_triangle.is_degenerate() || !CGAL::do_intersect(triangle, other_triangle)) continue;
     const auto [shared_query, shared_face] = shared_corners(corners, u);
-    const CgalTriangle& other = *hit;
-    if (other.is_degenerate()) continue;
-    if (meet_beyond_shared(query, {other[0], other[1], other[2]}, shared_query, shared_face)) {
-      faces.push_back(face);
-    }
+    if (meet_beyond_shared(query, other, shared_query, shared_face)) faces.push_back(face);
   }
-  std::sort(faces.begin(), faces.end());
   return faces;
 }
 

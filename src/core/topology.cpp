@@ -107,11 +107,35 @@ void build_components(const Mesh& mesh, MeshTopology& topology) {
   }
 }
 
+// The faces around vertex v reached from its first face by crossing manifold edges at v, both
+// ways round (at most all of them).
+int faces_in_first_fan(const Mesh& mesh, const MeshTopology& topology, int v) {
+  const int first = topology.vertex_faces[topology.vertex_face_offsets[v]];
+  int leaving = 3 * first;  // the half-edge of `first` that leaves v
+  while (topology.halfedge_source(mesh, leaving) != v) ++leaving;
+  const int degree = topology.vertex_face_offsets[v + 1] - topology.vertex_face_offsets[v];
+  int count = 1;
+  // Against the orientation: across the edge entering v, to the face where it leaves v.
+  for (int h = topology.opposite[prev_halfedge(leaving)]; h >= 0 && count <= degree;
+       h = topology.opposite[prev_halfedge(h)]) {
+    if (halfedge_face(h) == first) return count;  // closed round
+    ++count;
+  }
+  // With the orientation: across the edge leaving v, to the face where it enters v.
+  for (int h = topology.opposite[leaving]; h >= 0 && count <= degree;
+       h = topology.opposite[next_halfedge(h)]) {
+    ++count;
+  }
+  return count;
+}
+
 // The fans of faces around vertex v: its faces linked through the two-face edges at v. `parent` is
-// scratch space.
+// scratch space. One walk round v settles the common case (a single fan through manifold edges).
 int count_fans(const Mesh& mesh, const MeshTopology& topology, int v, std::vector<int>& parent) {
   const int begin = topology.vertex_face_offsets[v];
   const int end = topology.vertex_face_offsets[v + 1];
+  if (begin == end) return 0;
+  if (faces_in_first_fan(mesh, topology, v) == end - begin) return 1;
   parent.resize(end - begin);
   std::iota(parent.begin(), parent.end(), 0);
   int fans = end - begin;

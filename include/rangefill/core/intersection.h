@@ -10,8 +10,9 @@
 
 namespace rangefill {
 
-/// The faces of a mesh in a bounding-volume tree (CGAL AABB tree) for intersection queries. The
-/// tree is built in O(F log F) on the first query; queries may run from several threads.
+/// The faces of a mesh in a uniform grid for intersection queries, so that a query costs what the
+/// faces near it do. The grid is built in O(F log F) on the first query; queries may run from
+/// several threads.
 class IntersectionIndex {
  public:
   explicit IntersectionIndex(const Mesh& mesh);
