@@ -90,7 +90,7 @@ struct IntersectionIndex::Tree {
     std::sort(cell_faces.begin(), cell_faces.end());
   }
 
-  // Faces whose bounding box meets [low, high], ascending.
+  // Faces whose bounding box meets [low, high], each once (a face is in one cell), unordered.
   std::vector<int> candidates(const Vec3& low, const Vec3& high) const {
     std::vector<int> faces;
     const Cells range = cells(low - Vec3::Constant(cell), high);
@@ -103,8 +103,6 @@ struct IntersectionIndex::Tree {
         auto at = std::lower_bound(cell_faces.begin(), cell_faces.end(), std::make_pair(key, 0));
         for (; at != cell_faces.end() && at->first == key; ++at) faces.push_back(at->second);
       });
-      std::sort(faces.begin(), faces.end());
-      faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
     }
     faces.erase(std::remove_if(faces.begin(), faces.end(),
                                [&](int face) {
@@ -183,6 +181,7 @@ std::vector<int> IntersectionIndex::intersecting_faces(const Vec3& a, const Vec3
     const auto [shared_query, shared_face] = shared_corners(corners, u);
     if (meet_beyond_shared(query, other, shared_query, shared_face)) faces.push_back(face);
   }
+  std::sort(faces.begin(), faces.end());
   return faces;
 }
 

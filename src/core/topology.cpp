@@ -48,8 +48,14 @@ void build_edges(const Mesh& mesh, MeshTopology& topology) {
   const int halfedge_count = 3 * mesh.face_count();
   auto source = [&](int h) { return topology.halfedge_source(mesh, h); };
   auto target = [&](int h) { return topology.halfedge_target(mesh, h); };
-  auto low = [&](int h) { return std::min(source(h), target(h)); };
-  auto high = [&](int h) { return std::max(source(h), target(h)); };
+  // Each half-edge's ends, read once from the faces: the sorts below read them again and again.
+  std::vector<int> lows(halfedge_count), highs(halfedge_count);
+  for (int h = 0; h < halfedge_count; ++h) {
+    lows[h] = std::min(source(h), target(h));
+    highs[h] = std::max(source(h), target(h));
+  }
+  auto low = [&](int h) { return lows[h]; };
+  auto high = [&](int h) { return highs[h]; };
 
   std::vector<int> halfedges(halfedge_count);
   std::iota(halfedges.begin(), halfedges.end(), 0);
