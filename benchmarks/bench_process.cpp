@@ -9,6 +9,9 @@
 //   pixels; skipped without ../shared): fill_depth by default and with `fast`, beside
 //   cv::inpaint (Navier-Stokes, radius 3) of the same pixels, all on one thread, with the rangefill
 //   command's malloc settings.
+// - repairing that grid with 10 holes punched into it (eval/punch.h, seed 1): repair() with the
+//   default options, beside CGAL's triangulate_refine_and_fair_hole of the same loops
+//   (fill_holes_cgal, the mesh kit's peer), in this process (I/O aside).
 // Report medians: --benchmark_repetitions=9 --benchmark_report_aggregates_only=true.
 #include <fcntl.h>
 #include <malloc.h>
@@ -26,9 +29,14 @@
 #include <opencv2/core/utility.hpp>
 #include <opencv2/photo.hpp>
 
+#include "rangefill/core/topology.h"
 #include "rangefill/depth/fill_depth.h"
+#include "rangefill/eval/baselines.h"
+#include "rangefill/eval/punch.h"
 #include "rangefill/io/depth_io.h"
 #include "rangefill/io/mesh_io.h"
+#include "rangefill/repair/holes.h"
+#include "rangefill/repair/pipeline.h"
 
 extern char** environ;
 
@@ -158,6 +166,38 @@ void Depth_FillFast(benchmark::State& state) {
   fill_frame(state, options);
 }
 
+// The grid with 10 holes punched, and the ids of its loops but the grid's own border.
+struct PunchedGrid {
+  Mesh mesh;
+  std::vector<int> holes;
+  PunchedGrid() {
+    rangefill::PunchOptions options;
+    options.holes = 10;
+    mesh = rangefill::punch_holes(height_field(), options).mesh;
+    const rangefill::HoleSet loops = rangefill::find_holes(mesh, rangefill::build_topology(mesh));
+    for (const rangefill::BoundaryLoop& loop : loops.loops) {
+      if (!rangefill::is_border(loop)) holes.push_back(loop.id);
+    }
+  }
+};
+
+const PunchedGrid& punched_grid() {
+  static const PunchedGrid instance;
+  return instance;
+}
+
+void Repair_Rangefill(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(rangefill::repair(punched_grid().mesh));
+}
+
+void Repair_CgalFair(benchmark::State& state) {
+  rangefill::BaselineOptions options;
+  options.holes = punched_grid().holes;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(rangefill::fill_holes_cgal(punched_grid().mesh, options));
+  }
+}
+
 BENCHMARK(StartUp_True)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(StartUp_RangefillVersion)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(Read_BinaryBytes)->Unit(benchmark::kMillisecond);
@@ -167,6 +207,8 @@ BENCHMARK(Read_AsciiPly)->Unit(benchmark::kMillisecond);
 BENCHMARK(Depth_Inpaint)->Unit(benchmark::kMillisecond);
 BENCHMARK(Depth_FillDefault)->Unit(benchmark::kMillisecond);
 BENCHMARK(Depth_FillFast)->Unit(benchmark::kMillisecond);
+BENCHMARK(Repair_Rangefill)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(Repair_CgalFair)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 // The console report, keeping each benchmark's real time (its median when repeated).
 class RatioReporter : public benchmark::ConsoleReporter {
@@ -205,6 +247,7 @@ int main(int argc, char** argv) {
   ratio("read_mesh, 1 M faces, ASCII PLY", "Read_AsciiPly", "Read_AsciiBytes");
   ratio("fill_depth, VGA frame", "Depth_FillDefault", "Depth_Inpaint");
   ratio("fill_depth fast, VGA frame", "Depth_FillFast", "Depth_Inpaint");
+  ratio("repair, 1 M faces, 10 holes", "Repair_Rangefill", "Repair_CgalFair");
   if (reporter.times.count("Read_AsciiPly")) {
     std::printf("%-44s %9.0f MB/s\n", "read_mesh, ASCII PLY",
                 fs::file_size(files().ascii) / 1e6 / (reporter.times["Read_AsciiPly"] / 1e3));
