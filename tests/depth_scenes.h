@@ -49,6 +49,23 @@ inline cv::Mat disc(cv::Point centre, int radius) {
   return mask;
 }
 
+// A ball (radius 0.5 m, centre 2 m ahead) before a wall 3 m away, CV_16U millimetres.
+inline cv::Mat ball_before_wall_mm() {
+  cv::Mat depth;
+  depth_image([](const Vec3& r) {
+    const double ball = sphere_depth(r, {0, 0, 2}, 0.5);
+    return ball > 0 ? ball : plane_depth(r, {0, 0, 1}, 3);
+  }).convertTo(depth, CV_16U, 1000);
+  return depth;
+}
+
+// Twelve discs of 3 to 6 pixels in a row across ball_before_wall_mm(), some at its silhouette.
+inline cv::Mat twelve_discs() {
+  cv::Mat mask = cv::Mat::zeros(kSize, CV_8U);
+  for (int k = 0; k < 12; ++k) mask |= disc({60 + 45 * k, 120 + 20 * (k % 5)}, 3 + k % 4);
+  return mask;
+}
+
 // Largest |a − b| (metres) over the mask.
 inline double max_error(const cv::Mat& a, const cv::Mat& b, const cv::Mat& mask) {
   cv::Mat a64, b64;

@@ -169,13 +169,8 @@ TEST(FillDepth, KeepsEveryOtherPixelAndIsDeterministic) {
 // a ball before a wall, 16-bit, with twelve holes (some at its silhouette) and a grid of 400 bars
 // two pixels apart, whose windows overlap (a write that touched a hole's neighbours would race).
 TEST(FillDepth, SameResultAtAnyThreadCount) {
-  cv::Mat input;
-  depth_image([](const Vec3& r) {
-    const double ball = sphere_depth(r, {0, 0, 2}, 0.5);
-    return ball > 0 ? ball : plane_depth(r, {0, 0, 1}, 3);
-  }).convertTo(input, CV_16U, 1000);
-  cv::Mat hole = cv::Mat::zeros(kSize, CV_8U);
-  for (int k = 0; k < 12; ++k) hole |= disc({60 + 45 * k, 120 + 20 * (k % 5)}, 3 + k % 4);
+  cv::Mat input = ball_before_wall_mm();
+  cv::Mat hole = twelve_discs();
   for (int row = 300; row < 380; row += 4) {
     for (int col = 150; col < 490; col += 17) hole(cv::Rect(col, row, 15, 2)).setTo(255);
   }

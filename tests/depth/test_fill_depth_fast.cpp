@@ -76,13 +76,8 @@ TEST(FillDepthFast, ShadowsTakeTheBackgroundButAFarSurfaceFarAwayDoesNot) {
 // Pixels outside the holes come back bit for bit in the input's type (16-bit here, the fill
 // rounded to the millimetre and never 0), and the result is the same bits at any thread count.
 TEST(FillDepthFast, KeepsOtherPixelsAndIsTheSameAtAnyThreadCount) {
-  cv::Mat input;
-  depth_image([](const Vec3& r) {
-    const double ball = sphere_depth(r, {0, 0, 2}, 0.5);
-    return ball > 0 ? ball : plane_depth(r, {0, 0, 1}, 3);
-  }).convertTo(input, CV_16U, 1000);
-  cv::Mat hole = cv::Mat::zeros(kSize, CV_8U);
-  for (int k = 0; k < 12; ++k) hole |= disc({60 + 45 * k, 120 + 20 * (k % 5)}, 3 + k % 4);
+  cv::Mat input = ball_before_wall_mm();
+  cv::Mat hole = twelve_discs();
   hole.rowRange(0, 3).setTo(255);
   input.setTo(0, hole);
   cv::Mat one;
