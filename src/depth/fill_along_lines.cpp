@@ -56,8 +56,8 @@ struct Guesses {
   int count = 0;
   void add(Guess guess) { guesses[count++] = guess; }
 
-  // The weighted mean of the guesses within `discontinuity` of the farthest (the smallest
-  // inverse depth) among those from at most kFarSurfaceMargin pixels farther than the nearest.
+  // The weighted mean of the guesses on the surface (rules.same_surface) of the farthest (the
+  // smallest inverse depth) among those from at most kFarSurfaceMargin pixels beyond the nearest.
   float far_surface_mean(const GuessRules& rules) const {
     float nearest = guesses[0].distance;
     for (int i = 1; i < count; ++i) nearest = std::min(nearest, guesses[i].distance);
@@ -249,8 +249,8 @@ cv::Mat fill_along_lines(const cv::Mat& z, const cv::Mat& data, const cv::Mat& t
     const std::uint8_t* valid = data.ptr<std::uint8_t>(row);
     float* values = inverse.ptr<float>(row);
     for (int col = 0; col < z.cols; ++col) {  // no branch, so that GCC vectorises it
-      const float data = static_cast<float>(valid[col] != 0);
-      values[col] = data / (depth[col] + (1 - data));  // 1 / z at data, 0 elsewhere
+      const float is_data = static_cast<float>(valid[col] != 0);
+      values[col] = is_data / (depth[col] + (1 - is_data));  // 1 / z at data, 0 elsewhere
     }
   }
   const GuessRules rules(discontinuity, std::max(z.rows, z.cols));

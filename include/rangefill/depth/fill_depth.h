@@ -20,9 +20,10 @@ InpainterOptions depth_inpainting_defaults();
 struct DepthFillOptions {
   /// Fill along lines instead of a back-end per hole: each pixel interpolated in inverse depth
   /// between the valid pixels it sees along its row, column and diagonals, the far surface
-  /// preferred (the occlusion rule of step 2 below, without step 1's analysis). Some 5 ms a VGA
-  /// frame, one thread; less accurate than the back-ends (README, Depth maps). Reads
-  /// discontinuity, max_hole_pixels and keep_border of the options below.
+  /// preferred (the occlusion rule of step 2 below, without step 1's analysis and among the
+  /// valid pixels nearest the pixel). 4–10 ms a VGA frame on one thread; the back-ends are more
+  /// accurate at depth edges (README, Depth maps). Reads discontinuity, threads (bands of rows),
+  /// max_hole_pixels and keep_border of the options below.
   bool fast = false;
   std::string inpainter = "harmonic";  // a name of inpainter_names()
   InpainterOptions inpainting = depth_inpainting_defaults();
