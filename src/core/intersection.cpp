@@ -14,27 +14,30 @@ namespace rangefill {
 
 using namespace cgal_triangles;
 
-// The faces in a uniform grid of cubes three times their mean extent, each face listed in the
-// cell of its bounding box's low corner: a query reads the cells its own box meets and those one
-// cell lower, so its cost follows the faces near it, not the mesh. Faces larger than a cell are
-// checked by every query.
+// The faces in uniform grids: grid k has cubes of 3·4^k times the mean face extent and holds the
+// faces too large for grid k − 1, each in the cell of its bounding box's low corner. A query reads,
+// in each grid, the cells its own box meets and those one cell lower, so its cost follows the
+// faces near it, not the mesh, whatever the spread of the face sizes.
 struct IntersectionIndex::Tree {
+  struct Grid {
+    double cell = 1;
+    std::vector<std::pair<std::uint64_t, int>> cell_faces;  // (cell key, face), sorted
+  };
+  static constexpr long long kAxisCells = 1 << 21;
+  using Cells = std::array<std::array<long long, 2>, 3>;  // first and last cell on each axis
+
   std::vector<Vec3> positions;
   std::vector<Triangle> corners;
-  std::once_flag built;  // the grid is built on the first query, by whichever thread asks
+  std::once_flag built;  // the grids are built on the first query, by whichever thread asks
   Vec3 origin = Vec3::Zero();
-  double cell = 1;
-  std::vector<std::pair<std::uint64_t, int>> cell_faces;  // (cell key, face), sorted
-  std::vector<int> large_faces;
-
-  using Cells = std::array<std::array<long long, 2>, 3>;  // first and last cell on each axis
+  std::vector<Grid> grids;
 
   std::pair<Vec3, Vec3> box(int face) const {
     const Triangle& t = corners[face];
     const Vec3 &p = positions[t[0]], &q = positions[t[1]], &r = positions[t[2]];
     return {p.cwiseMin(q).cwiseMin(r), p.cwiseMax(q).cwiseMax(r)};
   }
-  Cells cells(const Vec3& low, const Vec3& high) const {
+  Cells cells(const Vec3& low, const Vec3& high, double cell) const {
     Cells range;
     for (int axis = 0; axis < 3; ++axis) {
       for (int side = 0; side < 2; ++side) {
@@ -51,17 +54,9 @@ struct IntersectionIndex::Tree {
     for (const auto& [first, last] : range) n *= last - first + 1;
     return n;
   }
-  template <typename Visit>
-  static void for_each_key(const Cells& range, Visit visit) {
-    for (long long z = range[2][0]; z <= range[2][1]; ++z) {
-      for (long long y = range[1][0]; y <= range[1][1]; ++y) {
-        for (long long x = range[0][0]; x <= range[0][1]; ++x) {
-          visit(static_cast<std::uint64_t>(x | y << 21 | z << 42));
-        }
-      }
-    }
+  static std::uint64_t key(long long x, long long y, long long z) {
+    return static_cast<std::uint64_t>(x | y << 21 | z << 42);
   }
-  static constexpr long long kAxisCells = 1 << 21;
 
   void build() {
     const int face_count = static_cast<int>(corners.size());
@@ -75,34 +70,45 @@ struct IntersectionIndex::Tree {
     }
     origin = low;
     // No more than kAxisCells cells along an axis.
-    cell = std::max({3 * extent / face_count, (high - low).maxCoeff() / (kAxisCells - 2),
-                     std::numeric_limits<double>::min()});
-    cell_faces.reserve(face_count);
+    const double first_cell =
+        std::max({3 * extent / face_count, (high - low).maxCoeff() / (kAxisCells - 2),
+                  std::numeric_limits<double>::min()});
     for (int face = 0; face < face_count; ++face) {
       const auto [face_low, face_high] = box(face);
-      if ((face_high - face_low).maxCoeff() > cell) {
-        large_faces.push_back(face);
-      } else {
-        for_each_key(cells(face_low, face_low),
-                     [&](std::uint64_t key) { cell_faces.emplace_back(key, face); });
+      const double face_extent = (face_high - face_low).maxCoeff();
+      size_t level = 0;
+      while (level < grids.size() && grids[level].cell < face_extent) ++level;
+      while (level == grids.size() || grids[level].cell < face_extent) {
+        grids.push_back({grids.empty() ? first_cell : 4 * grids.back().cell, {}});
+        level = grids.size() - 1;
       }
+      const Cells at = cells(face_low, face_low, grids[level].cell);
+      grids[level].cell_faces.emplace_back(key(at[0][0], at[1][0], at[2][0]), face);
     }
-    std::sort(cell_faces.begin(), cell_faces.end());
+    for (Grid& grid : grids) std::sort(grid.cell_faces.begin(), grid.cell_faces.end());
   }
 
-  // Faces whose bounding box meets [low, high], each once (a face is in one cell), unordered.
+  // Faces whose bounding box meets [low, high], each once, unordered.
   std::vector<int> candidates(const Vec3& low, const Vec3& high) const {
     std::vector<int> faces;
-    const Cells range = cells(low - Vec3::Constant(cell), high);
-    if (count(range) > static_cast<long long>(cell_faces.size())) {  // as many cells as entries
-      faces.resize(corners.size());
-      std::iota(faces.begin(), faces.end(), 0);
-    } else {
-      faces = large_faces;
-      for_each_key(range, [&](std::uint64_t key) {
-        auto at = std::lower_bound(cell_faces.begin(), cell_faces.end(), std::make_pair(key, 0));
-        for (; at != cell_faces.end() && at->first == key; ++at) faces.push_back(at->second);
-      });
+    for (const Grid& grid : grids) {
+      const Cells range = cells(low - Vec3::Constant(grid.cell), high, grid.cell);
+      if (count(range) > static_cast<long long>(grid.cell_faces.size())) {  // read them all
+        for (const auto& entry : grid.cell_faces) faces.push_back(entry.second);
+        continue;
+      }
+      for (long long z = range[2][0]; z <= range[2][1]; ++z) {
+        for (long long y = range[1][0]; y <= range[1][1]; ++y) {
+          for (long long x = range[0][0]; x <= range[0][1]; ++x) {
+            const std::uint64_t cell = key(x, y, z);
+            auto at = std::lower_bound(grid.cell_faces.begin(), grid.cell_faces.end(),
+                                       std::make_pair(cell, 0));
+            for (; at != grid.cell_faces.end() && at->first == cell; ++at) {
+              faces.push_back(at->second);
+            }
+          }
+        }
+      }
     }
     faces.erase(std::remove_if(faces.begin(), faces.end(),
                                [&](int face) {
