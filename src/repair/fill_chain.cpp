@@ -447,7 +447,8 @@ std::optional<Fill> fill_by_chain(const SurfaceContext& surface, const BoundaryL
                 options,
                 report,
                 grow_zone(surface.mesh, surface.topology, surface.holes, hole, surface.normals,
-                          surface.mean_edge, options.zone)};
+                          surface.mean_edge, options.zone),
+                std::nullopt};
   report.stages.zone = lap(stage);
   report.rings = work.zone.rings;
   report.zone_faces = static_cast<int>(work.zone.faces.size());
