@@ -6,6 +6,7 @@ packages=(
   libeigen3-dev libopencv-dev libpcl-dev libceres-dev libsuitesparse-dev
   libcgal-dev libgtest-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev zlib1g-dev libpng-dev libtiff-dev libopenexr-dev
+  pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module (python/)
   clang-14 libclang-rt-14-dev  # libFuzzer and the sanitizer runtimes (scripts/fuzz.sh)
 )
 missing=()

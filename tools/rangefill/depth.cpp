@@ -10,6 +10,7 @@
 #include "rangefill/core/parallel.h"
 #include "rangefill/depth/fill_depth.h"
 #include "rangefill/io/depth_io.h"
+#include "reports.h"
 
 namespace rangefill::cli {
 
@@ -24,22 +25,6 @@ struct DepthCommand {
   bool json = false;
   DepthFillOptions options;
 };
-
-nlohmann::json stats_json(const DepthFillStats& stats) {
-  auto left = [](const DepthFillStats::Left& left) {
-    return nlohmann::json{{"holes", left.holes}, {"pixels", left.pixels}};
-  };
-  return {{"holes", stats.holes},
-          {"filled", stats.filled},
-          {"filled_pixels", stats.filled_pixels},
-          {"at_edge", stats.at_edge},
-          {"left_holes", stats.left_holes()},
-          {"left_pixels", stats.left_pixels()},
-          {"left",
-           {{"too_large", left(stats.too_large)},
-            {"at_border", left(stats.at_border)},
-            {"without_support", left(stats.without_support)}}}};
-}
 
 // "12 holes, 11 filled (3052 pixels, 4 beside a depth edge); left: 1 hole, 25 pixels (at the
 // border 1 / 25)": what is left only by the reasons that left something.
@@ -121,7 +106,7 @@ int run_single(const DepthCommand& command) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (command.json) {
-    nlohmann::json report = stats_json(stats);
+    nlohmann::json report = reports::depth_fill_report(stats);
     report["input"] = command.input;
     report["output"] = command.output;
     report["seconds"] = seconds;
@@ -218,7 +203,8 @@ int run_batch(const DepthCommand& command) {
     skipped += !outcome.written;
     if (!outcome.written) std::cerr << "rangefill: skipped " << outcome.error << "\n";
     if (!command.json) continue;
-    nlohmann::json entry = outcome.written ? stats_json(outcome.stats) : nlohmann::json::object();
+    nlohmann::json entry =
+        outcome.written ? reports::depth_fill_report(outcome.stats) : nlohmann::json::object();
     entry["input"] = files[i].string();
     entry["written"] = outcome.written;
     if (!outcome.written) entry["error"] = outcome.error;

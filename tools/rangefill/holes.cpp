@@ -6,6 +6,7 @@
 #include "cli.h"
 #include "rangefill/core/topology.h"
 #include "rangefill/repair/holes.h"
+#include "reports.h"
 
 namespace rangefill::cli {
 
@@ -23,26 +24,9 @@ int run_holes(const HolesOptions& options) {
   const HoleSet holes = find_holes(mesh, topology);
 
   if (options.json) {
-    nlohmann::json loops = nlohmann::json::array();
-    for (const BoundaryLoop& loop : holes.loops) {
-      nlohmann::json entry = {{"id", loop.id},
-                              {"edges", loop.vertices.size()},
-                              {"perimeter", loop.perimeter},
-                              {"area", loop.area},
-                              {"component", loop.component},
-                              {"area_share", loop.area_share},
-                              {"border", is_border(loop)}};
-      if (options.list_vertices) entry["vertices"] = loop.vertices;
-      loops.push_back(entry);
-    }
-    print_json({{"file", options.mesh},
-                {"mean_edge_length", mean_edge_length(mesh, topology)},
-                {"loops", loops},
-                {"pinched_vertices", holes.pinched_vertices},
-                {"open_boundary_edges", holes.open_boundary_edges},
-                {"nonmanifold_edges", topology.nonmanifold_edge_count},
-                {"misoriented_edges", topology.misoriented_edge_count},
-                {"nonmanifold_vertices", topology.nonmanifold_vertices}});
+    nlohmann::json report = reports::holes_report(mesh, topology, holes, options.list_vertices);
+    report["file"] = options.mesh;
+    print_json(report);
     return kOk;
   }
   std::printf("%s: %zu boundary loops\n", options.mesh.c_str(), holes.loops.size());

@@ -11,6 +11,7 @@
 #include "rangefill/io/depth_io.h"
 #include "rangefill/repair/pipeline.h"
 #include "rangefill/repair/point_cloud.h"
+#include "reports.h"
 
 namespace rangefill::cli {
 
@@ -80,84 +81,18 @@ void refuse_same_file(const std::string& path, const std::string& other, const s
   }
 }
 
-// Why the last attempt on hole `id` failed ("" when none did).
-std::string failure_of(const RepairResult& result, int id) {
-  for (auto hole = result.holes.rbegin(); hole != result.holes.rend(); ++hole) {
-    if (hole->id == id && !hole->filled) return hole->failure;
-  }
-  return "";
-}
-
 nlohmann::json report_json(const RepairCommand& command, const RepairResult& result,
                            double seconds) {
-  nlohmann::json holes = nlohmann::json::array();
-  for (const HoleReport& hole : result.holes) {
-    nlohmann::json attempts = nlohmann::json::array();
-    for (const Attempt& attempt : hole.attempts) {
-      attempts.push_back({{"strategy", attempt.strategy ? strategy_name(*attempt.strategy) : ""},
-                          {"refusal", refusal_name(attempt.refused.refusal)},
-                          {"detail", attempt.refused.detail}});
-    }
-    holes.push_back({{"id", hole.id},
-                     {"pass", hole.pass},
-                     {"loop", hole.loop},
-                     {"boundary_vertices", hole.boundary_vertices},
-                     {"area", hole.area},
-                     {"rings", hole.rings},
-                     {"zone_faces", hole.zone_faces},
-                     {"image_size", {hole.image_size.width, hole.image_size.height}},
-                     {"masked_pixels", hole.masked_pixels},
-                     {"gap_pixels", hole.gap_pixels},
-                     {"trend", trend_name(hole.trend)},
-                     {"new_vertices", hole.new_vertices},
-                     {"new_faces", hole.new_faces},
-                     {"seconds", hole.seconds},
-                     {"stage_seconds",
-                      {{"zone", hole.stages.zone},
-                       {"planes", hole.stages.planes},
-                       {"image", hole.stages.image},
-                       {"inpainting", hole.stages.inpainting},
-                       {"stitching", hole.stages.stitching},
-                       {"checking", hole.stages.checking},
-                       {"front", hole.stages.front},
-                       {"fairing", hole.stages.fairing}}},
-                     {"method", hole.method},
-                     {"other_holes", hole.other_holes},
-                     {"filled", hole.filled},
-                     {"rim_support", hole.rim_support},
-                     {"attempts", attempts},
-                     {"failure", hole.failure}});
-  }
-  nlohmann::json open_loops = nlohmann::json::array();
-  for (const OpenLoop& loop : result.open_loops) {
-    nlohmann::json entry = {{"id", loop.id},
-                            {"hole", loop.hole},
-                            {"edges", loop.edges},
-                            {"area", loop.area},
-                            {"area_share", loop.area_share},
-                            {"reason", open_reason_name(loop.reason)}};
-    if (loop.reason == OpenReason::failed) entry["failure"] = failure_of(result, loop.hole);
-    open_loops.push_back(entry);
-  }
-  const MeshDefects& defects = result.defects;
-  return {{"input", command.input},
-          {"output", command.output},
-          {"inpainter", command.options.inpainter},
-          {"trend", command.trend},
-          {"filler", command.filler},
-          {"mesher", command.mesher},
-          {"border_share", command.options.border_share},
-          {"defects",
-           {{"nonmanifold_edges", defects.nonmanifold_edges},
-            {"misoriented_edges", defects.misoriented_edges},
-            {"nonmanifold_vertices", defects.nonmanifold_vertices},
-            {"duplicated_faces", defects.duplicated_faces},
-            {"degenerate_faces", defects.degenerate_faces}}},
-          {"holes", holes},
-          {"restoration_matrix", result.restoration_matrix},
-          {"loops_left_open", result.open_loops.size()},
-          {"open_loops", open_loops},
-          {"seconds", seconds}};
+  nlohmann::json report = reports::repair_report(result);
+  report["input"] = command.input;
+  report["output"] = command.output;
+  report["inpainter"] = command.options.inpainter;
+  report["trend"] = command.trend;
+  report["filler"] = command.filler;
+  report["mesher"] = command.mesher;
+  report["border_share"] = command.options.border_share;
+  report["seconds"] = seconds;
+  return report;
 }
 
 void print_summary(const RepairResult& result) {
