@@ -170,3 +170,20 @@ def test_the_gil_is_released_while_a_frame_is_filled():
         turns += 1
         time.sleep(0.001)
     assert turns >= 20
+
+
+def test_the_example_fills_a_folder(tmp_path):
+    import pathlib
+    import subprocess
+    import sys
+
+    folder = tmp_path / "frames"
+    folder.mkdir()
+    for i in range(3):
+        rangefill.write_depth(with_holes(plane_depth())[:, i:], folder / f"frame-{i}.png")
+    example = (pathlib.Path(__file__).parents[2] / "python" / "examples" / "fill_depth_folder.py")
+    output = subprocess.run([sys.executable, example, folder, "--out", tmp_path / "out",
+                             "--no-plot"], check=True, capture_output=True, text=True).stdout
+    assert output.count("3 of 3 holes") == 3
+    for i in range(3):
+        assert (rangefill.read_depth(tmp_path / "out" / f"frame-{i}.png") > 0).all()
