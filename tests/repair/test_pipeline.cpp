@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "rangefill/core/errors.h"
+#include "rangefill/core/intersection.h"
 #include "rangefill/eval/metrics.h"
 #include "rangefill/io/mesh_io.h"
 #include "support.h"
@@ -418,6 +419,43 @@ TEST(HardHoles, ZoneReachingAnotherHoleDoesNotBridgeIt) {
     EXPECT_LT((p - own).norm(), 6.0) << "vertex " << v << " outside its own hole";
   }
   EXPECT_EQ(check_manifold(result.mesh).boundary_loops, 1);  // the sheet's border
+}
+
+// Two holes facing each other across the inside of a box, one on the top, one on the bottom, each
+// at the summit of a bump towards the other. Their surfaces, continued, cross (the bumps' summits
+// would meet), though what is left of them does not: each fill passes every check against the
+// mesh, but the two fills of the first pass meet. The later is set aside and its loop filled in the
+// next pass, against the first fill; the output keeps the integrity rules.
+TEST(HardHoles, TwoHolesWhoseFillsWouldMeetAreFilledOneAfterTheOther) {
+  const Vec3 axis(0.5, 0.5, 0);
+  const double bump_radius = 0.35, height = 0.66;
+  Mesh box = testing::make_box(40);
+  for (Vec3& p : box.positions) {
+    const double r = (p - axis).head<2>().norm() / bump_radius;
+    const double bump = r < 1 ? height * (1 - r * r) * (1 - r * r) : 0;  // triharmonic inside
+    if (p.z() == 0) p.z() = bump;
+    if (p.z() == 1) p.z() = 1 - bump;  // the summits at 0.66 and 0.34: the surfaces cross
+  }
+  const Mesh holed = testing::remove_faces(box, [&](const Vec3& p) {
+    return (p - axis).head<2>().norm() < 0.5 * bump_radius && p.z() > 0 && p.z() < 1;
+  });
+  ASSERT_EQ(find_holes(holed, build_topology(holed)).loops.size(), 2u);
+  const RepairResult result = repair(holed, RepairOptions{});
+  int set_aside = 0;
+  for (const HoleReport& hole : result.holes) {
+    for (const Attempt& attempt : hole.attempts) {
+      set_aside += attempt.refused.refusal == Refusal::intersects &&
+                   attempt.refused.detail.find("with the fill of hole") != std::string::npos;
+    }
+  }
+  EXPECT_EQ(set_aside, 1) << "the two fills of the first pass do not meet";
+  ASSERT_EQ(result.holes.size(), 3u);  // two in the first pass, the one set aside in the second
+  EXPECT_TRUE(result.holes[2].filled) << result.holes[2].failure;
+  EXPECT_EQ(result.holes[2].pass, 1);
+  EXPECT_EQ(result.open_count(OpenReason::failed), 0);
+  testing::expect_input_preserved(holed, result.mesh);
+  EXPECT_TRUE(check_manifold(result.mesh).closed_manifold());
+  EXPECT_EQ(count_self_intersections(result.mesh, faces_of_hole(result.mesh, kAnyHole)), 0);
 }
 
 // Figure 7e–f: a zone that encloses an island it does not grow onto. A block 10 high stands 1
