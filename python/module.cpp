@@ -289,8 +289,9 @@ depth: H×W uint16 (millimetres, 0 invalid) or float32 (metres, 0 or NaN invalid
 mask: H×W bool or uint8, the pixels to fill (non-zero); None fills every invalid pixel.
 The options and their defaults are `rangefill depth`'s (README, Depth maps): inpainter, the
 back-end (backends()); fast, fill along rows, columns and diagonals instead (4-10 ms a VGA
-frame); threads, holes filled at once (the result does not depend on it); max_hole_pixels,
-larger holes left (0: no limit); keep_border, leave holes touching the border; reach (pixels);
+frame); threads, holes filled at once (every hardware thread; the result does not depend on
+it); max_hole_pixels, larger holes left (0: no limit); keep_border, leave holes touching the
+border; reach (pixels);
 discontinuity, relative depth jump between surfaces; trend, 'none', 'plane' or 'quadric';
 trend_ring and margin (pixels); radius (pixels, telea and ns); foe_start, foe_tolerance,
 foe_iterations (foe's inference).
@@ -463,8 +464,9 @@ OSError.)");
 The options and their defaults are `rangefill repair`'s (README): filler and fallback (the fill
 chain), inpainter, trend, holes (loop ids of holes(); None: every loop but borders), fill_all,
 border_share, max_hole_size (edges), max_hole_area (the mesh's units squared), passes, threads
-(the result does not depend on it), beta (grid step in mean edge lengths), gamma (degrees), rings,
-radius (pixels), alpha (mls), mesher ('greedy' meshes a point cloud first, 'none' refuses it).
+(every hardware thread; the result does not depend on it), beta (grid step in mean edge
+lengths), gamma (degrees), rings, radius (pixels), alpha (mls), mesher ('greedy' meshes a point
+cloud first, 'none' refuses it).
 repaired: a new Mesh, the input's vertices and faces first and bit for bit, vertex_hole and
 face_hole the id of the hole that made each new element (-1: original). report: the dict of
 `rangefill repair --json` (holes, open_loops, restoration_matrix, defects). A hole that cannot be

@@ -40,7 +40,7 @@ def fill_depth(
     *,
     inpainter: str = "harmonic",
     fast: bool = False,
-    threads: int = 1,
+    threads: int = ...,  # every hardware thread
     max_hole_pixels: int = 0,
     keep_border: bool = False,
     reach: int = 32,
@@ -84,7 +84,7 @@ def repair(
     max_hole_size: int = 0,
     max_hole_area: float = 0,
     passes: int = 8,
-    threads: int = 1,
+    threads: int = ...,  # every hardware thread
     beta: float = 0.87,
     gamma: float = 75,
     rings: int = 0,

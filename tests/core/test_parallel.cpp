@@ -38,7 +38,9 @@ TEST(ParallelFor, RethrowsTheFirstFailureOnTheCallingThread) {
       EXPECT_STREQ(error.what(), "task 3") << threads;
     }
     for (int i = 0; i <= 3; ++i) EXPECT_EQ(runs[i], 1) << i;
-    if (threads == 1) EXPECT_EQ(runs[4], 0) << "a task ran after the failure";
+    if (threads == 1) {
+      EXPECT_EQ(runs[4], 0) << "a task ran after the failure";
+    }
   }
 }
 

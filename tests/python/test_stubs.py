@@ -27,4 +27,8 @@ def test_the_stubs_match_the_module():
                                   *zip(arguments.kwonlyargs, arguments.kw_defaults)]:
             if default is not None:
                 stub_defaults[argument.arg] = eval(ast.unparse(default))  # literals and 1 / 64
-        assert stub_defaults == runtime_defaults(getattr(rangefill, name)), name
+        runtime = runtime_defaults(getattr(rangefill, name))
+        for argument in [a for a, value in stub_defaults.items() if value is Ellipsis]:
+            assert isinstance(runtime[argument], int), (name, argument)  # the machine's
+            stub_defaults[argument] = runtime[argument]
+        assert stub_defaults == runtime, name

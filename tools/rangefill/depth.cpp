@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 struct DepthCommand {
   std::string input, output, mask, filled_mask, batch, out_dir, mask_dir, shard = "0/1";
   std::string trend = "none";
-  int threads = 1;
+  int threads = hardware_threads();
   bool json = false;
   DepthFillOptions options;
 };
@@ -169,6 +169,8 @@ int run_batch(const DepthCommand& command) {
   std::mutex progress_mutex;
   int done = 0;
   const bool progress = stderr_is_terminal();
+  DepthFillOptions options = command.options;
+  options.threads = 1;  // files in parallel, the holes of each in turn
   const auto start = std::chrono::steady_clock::now();
   parallel_for(static_cast<int>(files.size()), command.threads, [&](int i) {
     const fs::path output = fs::path(command.out_dir) / files[i].filename();
@@ -182,7 +184,7 @@ int run_batch(const DepthCommand& command) {
         if (!fs::exists(mask)) throw IoError(files[i].string() + ": no mask " + mask.string());
         if (same_file(output, mask)) throw IoError(output.string() + ": is a mask");
       }
-      outcome.stats = fill_file(files[i], mask, output, {}, command.options).stats;
+      outcome.stats = fill_file(files[i], mask, output, {}, options).stats;
       outcome.written = true;
     } catch (const std::exception& error) {
       outcome.error = error.what();

@@ -11,6 +11,12 @@
 
 namespace rangefill {
 
+/// The threads the hardware runs at once (at least 1): the default of the options that fill holes
+/// in parallel, whose results do not depend on it.
+inline int hardware_threads() {
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
 /// Runs task(i) for i in [0, count) on `threads` threads (at most `count`; 1 runs them in order on
 /// the calling thread). Tasks are handed out in increasing i. When tasks throw, no task is started
 /// after the first throw, the running ones finish, and the exception of the lowest i among those

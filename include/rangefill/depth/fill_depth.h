@@ -6,6 +6,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "rangefill/core/parallel.h"
 #include "rangefill/depth/depth_image.h"
 #include "rangefill/inpaint/inpainter.h"
 #include "rangefill/repair/trend.h"
@@ -27,9 +28,9 @@ struct DepthFillOptions {
   bool fast = false;
   std::string inpainter = "harmonic";  // a name of inpainter_names()
   InpainterOptions inpainting = depth_inpainting_defaults();
-  int threads = 1;                // holes filled at once; the result does not depend on it
-  long long max_hole_pixels = 0;  // larger holes are left as they are; 0: no limit
-  bool keep_border = false;       // leave holes that touch the image border as they are
+  int threads = hardware_threads();  // holes filled at once; the result does not depend on it
+  long long max_hole_pixels = 0;     // larger holes are left as they are; 0: no limit
+  bool keep_border = false;          // leave holes that touch the image border as they are
   /// Depths z1 < z2 lie on different surfaces when z2 > (1 + discontinuity)·z1.
   double discontinuity = 0.05;
   /// Surface fitted to the valid pixels within `trend_ring` pixels of a hole, removed before the

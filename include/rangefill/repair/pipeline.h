@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "rangefill/core/mesh.h"
+#include "rangefill/core/parallel.h"
 #include "rangefill/core/topology.h"
 #include "rangefill/repair/fill.h"
 #include "rangefill/repair/fill_chain.h"
@@ -25,8 +26,9 @@ struct RepairOptions : FillOptions {
   double border_share = kBorderShare;
   int max_hole_edges = 0;    // loops with more boundary edges are left open; 0 = no limit
   double max_hole_area = 0;  // loops with a larger area are left open; 0 = no limit
-  int passes = 8;   // rounds of detect–fill–merge (Section IX); complex holes take one per part
-  int threads = 1;  // holes of a pass are independent; the result does not depend on it
+  int passes = 8;  // rounds of detect–fill–merge (Section IX); complex holes take one per part
+  int threads = hardware_threads();  // holes of a pass filled at once; the result does not
+                                     // depend on it
   std::function<void(const HoleReport&)> on_hole;  // after each hole (any thread, serialised);
                                                    // on_images is serialised too
 };
