@@ -131,6 +131,24 @@ IntersectionIndex& IntersectionIndex::operator=(IntersectionIndex&&) noexcept = 
 
 namespace {
 
+// Whether r and s lie on opposite sides of the line pq, certainly: the normals of (p, q, r) and
+// (p, q, s) point apart by more than the rounding of their dot product can hide (a filter before
+// CGAL's exact predicates, which subdivided meshes, flat across their edges, send to exact
+// arithmetic on every pair of neighbours).
+bool on_opposite_sides(const Point& p, const Point& q, const Point& r, const Point& s) {
+  const Vec3 a(p.x(), p.y(), p.z()), b(q.x(), q.y(), q.z());
+  const Vec3 c(r.x(), r.y(), r.z()), d(s.x(), s.y(), s.z());
+  const Vec3 edge = b - a, to_r = c - a, to_s = d - a;
+  const double dot = edge.cross(to_r).dot(edge.cross(to_s));
+  // The differences err by up to 2^-52 of the largest coordinate, the products by a few units of
+  // 2^-52 of their size: 1e-14 and 1e-12 are far beyond both.
+  const double largest = std::max({a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff(),
+                                   c.cwiseAbs().maxCoeff(), d.cwiseAbs().maxCoeff()});
+  const double e = edge.norm(), u = to_r.norm(), v = to_s.norm();
+  const double bound = 1e-12 * e * e * u * v + 1e-14 * largest * (2 * e * u * v + e * e * (u + v));
+  return dot < -bound;
+}
+
 // Whether triangles t (query) and u (a face), which meet and share the vertices marked in
 // shared_t / shared_u, intersect elsewhere, as CGAL's self_intersections decides: sharing one
 // vertex, an edge opposite it crosses the other triangle; sharing an edge, they are coplanar and
@@ -150,8 +168,14 @@ bool meet_beyond_shared(const std::array<Point, 3>& t, const std::array<Point, 3
   }
   const int i = index_of(shared_t, false), j = index_of(shared_u, false);
   const Point &p = t[(i + 1) % 3], &q = t[(i + 2) % 3];
+  if (on_opposite_sides(p, q, t[i], u[j])) return false;  // the usual case, without exact steps
   return CGAL::coplanar(p, q, t[i], u[j]) &&
          CGAL::coplanar_orientation(p, q, t[i], u[j]) == CGAL::POSITIVE;
+}
+
+// Whether triangles t and u meet at all: certainly when they share a corner (marked in shared_t).
+bool meets(const CgalTriangle& t, const CgalTriangle& u, const std::array<bool, 3>& shared_t) {
+  return std::count(shared_t.begin(), shared_t.end(), true) > 0 || CGAL::do_intersect(t, u);
 }
 
 // Which corners of t and of u are the same vertex (ids; -1 is no vertex).
@@ -182,9 +206,12 @@ std::vector<int> IntersectionIndex::intersecting_faces(const Vec3& a, const Vec3
                                         to_point(tree_->positions[u[1]]),
                                         to_point(tree_->positions[u[2]])};
     const CgalTriangle other_triangle(other[0], other[1], other[2]);
-    if (other_triangle.is_degenerate() || !CGAL::do_intersect(triangle, other_triangle)) continue;
+    if (other_triangle.is_degenerate()) continue;
     const auto [shared_query, shared_face] = shared_corners(corners, u);
-    if (meet_beyond_shared(query, other, shared_query, shared_face)) faces.push_back(face);
+    if (meets(triangle, other_triangle, shared_query) &&
+        meet_beyond_shared(query, other, shared_query, shared_face)) {
+      faces.push_back(face);
+    }
   }
   std::sort(faces.begin(), faces.end());
   return faces;
@@ -197,9 +224,9 @@ bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>
   const CgalTriangle triangle_a(first[0], first[1], first[2]);
   const CgalTriangle triangle_b(second[0], second[1], second[2]);
   if (triangle_a.is_degenerate() || triangle_b.is_degenerate()) return false;
-  if (!CGAL::do_intersect(triangle_a, triangle_b)) return false;
   const auto [shared_a, shared_b] = shared_corners(ids_a, ids_b);
-  return meet_beyond_shared(first, second, shared_a, shared_b);
+  return meets(triangle_a, triangle_b, shared_a) &&
+         meet_beyond_shared(first, second, shared_a, shared_b);
 }
 
 int count_self_intersections(const Mesh& mesh, const std::vector<int>& faces) {

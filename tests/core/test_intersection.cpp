@@ -82,6 +82,17 @@ TEST(TrianglesIntersect, AFoldAcrossASharedEdgeMeets) {
                                    {0, 1, 2}, {1, 0, 3}));
   EXPECT_TRUE(triangles_intersect(face, {Vec3(1, 0, 0), Vec3(0, 0, 0), Vec3(0.2, 0.5, 0)},
                                   {0, 1, 2}, {1, 0, 3}));
+  // The same far from the origin (coordinates rounded at 1e-10 of the edges), and a fold of the
+  // size of that rounding: decided as exactly.
+  const Vec3 far(1e6, -3e6, 2e6);
+  const double tiny = 1e-9;
+  const std::array<Vec3, 3> far_face = {far, far + Vec3(tiny, 0, 0), far + Vec3(0, tiny, 0)};
+  EXPECT_FALSE(triangles_intersect(far_face,
+                                   {far + Vec3(tiny, 0, 0), far, far + Vec3(tiny / 2, -tiny, 0)},
+                                   {0, 1, 2}, {1, 0, 3}));
+  EXPECT_TRUE(triangles_intersect(far_face,
+                                  {far + Vec3(tiny, 0, 0), far, far + Vec3(tiny / 5, tiny / 2, 0)},
+                                  {0, 1, 2}, {1, 0, 3}));
 }
 
 }  // namespace
