@@ -338,55 +338,38 @@ not such an image.)");
 .tif/.tiff, float32 to .tif/.tiff or .exr. Raises ValueError or OSError.)");
 }
 
+// The read-only property `name` of the Mesh class: its vector `member` viewed as rows of `columns`
+// values of T.
+template <auto member, typename T, size_t columns>
+void add_view(py::class_<Mesh>& mesh_class, const char* name) {
+  mesh_class.def_property_readonly(name, [](const py::object& self) {
+    const auto& values = self.cast<const Mesh&>().*member;
+    return view<T>(self, values.data(), values.size(), columns);
+  });
+}
+
 void add_mesh_class(py::module_& module) {
-  py::class_<Mesh>(module, "Mesh", R"(A triangle mesh. Its arrays are views of the mesh's own memory
-(no copy): change their values in place; a mesh of other sizes is a new Mesh.)")
+  py::class_<Mesh> mesh_class(module, "Mesh",
+                              R"(A triangle mesh. Its arrays are views of the mesh's own memory
+(no copy): change their values in place; a mesh of other sizes is a new Mesh.)");
+  mesh_class
       .def(py::init(&make_python_mesh), py::arg("vertices"), py::arg("faces"),
            py::arg("colors") = py::none(), py::arg("normals") = py::none(),
            R"(vertices: N×3 positions; faces: M×3 vertex indices (counter-clockwise seen from
 outside); colors: N×3 RGB in [0, 1]; normals: N×3. Raises ValueError on an index out of range, a
 repeated index in a face or a non-finite coordinate.)")
-      .def_property_readonly("vertices",
-                             [](const py::object& self) {
-                               const Mesh& mesh = self.cast<const Mesh&>();
-                               return view<double>(self, mesh.positions.data(),
-                                                   mesh.positions.size(), 3);
-                             })
-      .def_property_readonly("faces",
-                             [](const py::object& self) {
-                               const Mesh& mesh = self.cast<const Mesh&>();
-                               return view<int32_t>(self, mesh.triangles.data(),
-                                                    mesh.triangles.size(), 3);
-                             })
-      .def_property_readonly("colors",
-                             [](const py::object& self) {
-                               const Mesh& mesh = self.cast<const Mesh&>();
-                               return view<float>(self, mesh.colors.data(), mesh.colors.size(), 3);
-                             })
-      .def_property_readonly("normals",
-                             [](const py::object& self) {
-                               const Mesh& mesh = self.cast<const Mesh&>();
-                               return view<double>(self, mesh.normals.data(), mesh.normals.size(),
-                                                   3);
-                             })
-      .def_property_readonly("vertex_hole",
-                             [](const py::object& self) {
-                               const Mesh& mesh = self.cast<const Mesh&>();
-                               return view<int32_t>(self, mesh.vertex_hole.data(),
-                                                    mesh.vertex_hole.size(), 1);
-                             })
-      .def_property_readonly("face_hole",
-                             [](const py::object& self) {
-                               const Mesh& mesh = self.cast<const Mesh&>();
-                               return view<int32_t>(self, mesh.face_hole.data(),
-                                                    mesh.face_hole.size(), 1);
-                             })
       .def("__repr__", [](const Mesh& mesh) {
         return "rangefill.Mesh(" + std::to_string(mesh.vertex_count()) + " vertices, " +
                std::to_string(mesh.face_count()) + " faces" +
                (mesh.has_colors() ? ", colours" : "") + (mesh.has_normals() ? ", normals" : "") +
                ")";
       });
+  add_view<&Mesh::positions, double, 3>(mesh_class, "vertices");
+  add_view<&Mesh::triangles, int32_t, 3>(mesh_class, "faces");
+  add_view<&Mesh::colors, float, 3>(mesh_class, "colors");
+  add_view<&Mesh::normals, double, 3>(mesh_class, "normals");
+  add_view<&Mesh::vertex_hole, int32_t, 1>(mesh_class, "vertex_hole");
+  add_view<&Mesh::face_hole, int32_t, 1>(mesh_class, "face_hole");
 }
 
 void add_mesh_functions(py::module_& module) {
