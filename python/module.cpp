@@ -248,6 +248,17 @@ void register_errors(py::module_& module) {
   });
 }
 
+// `options` with the radius (telea, ns) and foe's inference settings of a call.
+InpainterOptions with_inference(InpainterOptions options, double radius,
+                                const std::string& foe_start, double foe_tolerance,
+                                int foe_iterations) {
+  options.radius = radius;
+  options.foe_start = foe_start;
+  options.foe_tolerance = foe_tolerance;
+  options.foe_iterations = foe_iterations;
+  return options;
+}
+
 void add_depth_functions(py::module_& module) {
   const DepthFillOptions depth;
   const InpainterOptions& inpainting = depth.inpainting;
@@ -268,10 +279,8 @@ void add_depth_functions(py::module_& module) {
         options.trend = trend_from_name(trend);
         options.trend_ring = trend_ring;
         options.margin = margin;
-        options.inpainting.radius = radius;
-        options.inpainting.foe_start = foe_start;
-        options.inpainting.foe_tolerance = foe_tolerance;
-        options.inpainting.foe_iterations = foe_iterations;
+        options.inpainting =
+            with_inference(options.inpainting, radius, foe_start, foe_tolerance, foe_iterations);
         return fill_depth_array(image, mask, options);
       },
       py::arg("depth"), py::arg("mask") = py::none(), py::kw_only(),
@@ -291,10 +300,9 @@ The options and their defaults are `rangefill depth`'s (README, Depth maps): inp
 back-end (backends()); fast, fill along rows, columns and diagonals instead (4-10 ms a VGA
 frame); threads, holes filled at once (every hardware thread; the result does not depend on
 it); max_hole_pixels, larger holes left (0: no limit); keep_border, leave holes touching the
-border; reach (pixels);
-discontinuity, relative depth jump between surfaces; trend, 'none', 'plane' or 'quadric';
-trend_ring and margin (pixels); radius (pixels, telea and ns); foe_start, foe_tolerance,
-foe_iterations (foe's inference).
+border; reach (pixels); discontinuity, relative depth jump between surfaces; trend, 'none',
+'plane' or 'quadric'; trend_ring and margin (pixels); radius (pixels, telea and ns);
+foe_start, foe_tolerance, foe_iterations (foe's inference).
 filled: an array of depth's type and shape, every pixel outside the filled holes as given, bit
 for bit the output of `rangefill depth`. stats: the dict of `rangefill depth --json` (holes,
 filled, filled_pixels, at_edge, left_holes, left_pixels, left) and filled_mask, H×W uint8, 255
@@ -304,14 +312,11 @@ where a pixel was filled. Raises ValueError on a bad type, shape or option.)");
       [](const py::array& image, const py::array& mask, const std::string& backend, double radius,
          const std::string& model, double mls_alpha, double mls_ring, const std::string& foe_start,
          double foe_tolerance, int foe_iterations) {
-        InpainterOptions options;
-        options.radius = radius;
+        InpainterOptions options =
+            with_inference({}, radius, foe_start, foe_tolerance, foe_iterations);
         options.model = model;
         options.mls_alpha = mls_alpha;
         options.mls_ring = mls_ring;
-        options.foe_start = foe_start;
-        options.foe_tolerance = foe_tolerance;
-        options.foe_iterations = foe_iterations;
         return inpaint_array(image, mask, backend, options);
       },
       py::arg("image"), py::arg("mask"), py::arg("backend"), py::kw_only(),
