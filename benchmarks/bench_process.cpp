@@ -9,9 +9,10 @@
 //   pixels; skipped without ../shared): fill_depth by default and with `fast`, beside
 //   cv::inpaint (Navier-Stokes, radius 3) of the same pixels, all on one thread, with the rangefill
 //   command's malloc settings.
-// - repairing that grid with 10 holes punched into it (eval/punch.h, seed 1): repair() with the
-//   default options, beside CGAL's triangulate_refine_and_fair_hole of the same loops
-//   (fill_holes_cgal, the mesh kit's peer), in this process (I/O aside).
+// - repairing that grid, and one of 2236 × 2236 (10 M faces), with 10 holes punched into it
+//   (eval/punch.h, seed 1): repair() with the default options, beside CGAL's
+//   triangulate_refine_and_fair_hole of the same loops (fill_holes_cgal, the mesh kit's peer), in
+//   this process (I/O aside).
 // Report medians: --benchmark_repetitions=9 --benchmark_report_aggregates_only=true.
 #include <fcntl.h>
 #include <malloc.h>
@@ -45,20 +46,21 @@ namespace {
 namespace fs = std::filesystem;
 using rangefill::Mesh;
 
-constexpr int kGrid = 708;  // 2 × 708² = 1 002 528 faces
+constexpr int kGrid = 708;        // 2 × 708² = 1 002 528 faces
+constexpr int kLargeGrid = 2236;  // 2 × 2236² = 9 999 392 faces
 
-// The grid, z a gentle wave so that positions are not integers.
-Mesh height_field() {
+// A grid × grid height field, z a gentle wave so that positions are not integers.
+Mesh height_field(int grid = kGrid) {
   std::vector<rangefill::Vec3> positions;
   std::vector<rangefill::Triangle> triangles;
-  for (int y = 0; y <= kGrid; ++y) {
-    for (int x = 0; x <= kGrid; ++x) {
+  for (int y = 0; y <= grid; ++y) {
+    for (int x = 0; x <= grid; ++x) {
       positions.emplace_back(x, y, 5 * std::sin(0.05 * x) * std::cos(0.07 * y));
     }
   }
-  const auto id = [](int x, int y) { return y * (kGrid + 1) + x; };
-  for (int y = 0; y < kGrid; ++y) {
-    for (int x = 0; x < kGrid; ++x) {
+  const auto id = [grid](int x, int y) { return y * (grid + 1) + x; };
+  for (int y = 0; y < grid; ++y) {
+    for (int x = 0; x < grid; ++x) {
       triangles.push_back({id(x, y), id(x + 1, y), id(x + 1, y + 1)});
       triangles.push_back({id(x, y), id(x + 1, y + 1), id(x, y + 1)});
     }
@@ -166,14 +168,14 @@ void Depth_FillFast(benchmark::State& state) {
   fill_frame(state, options);
 }
 
-// The grid with 10 holes punched, and the ids of its loops but the grid's own border.
+// A grid with 10 holes punched, and the ids of its loops but the grid's own border.
 struct PunchedGrid {
   Mesh mesh;
   std::vector<int> holes;
-  PunchedGrid() {
+  explicit PunchedGrid(int grid) {
     rangefill::PunchOptions options;
     options.holes = 10;
-    mesh = rangefill::punch_holes(height_field(), options).mesh;
+    mesh = rangefill::punch_holes(height_field(grid), options).mesh;
     const rangefill::HoleSet loops = rangefill::find_holes(mesh, rangefill::build_topology(mesh));
     for (const rangefill::BoundaryLoop& loop : loops.loops) {
       if (!rangefill::is_border(loop)) holes.push_back(loop.id);
@@ -181,21 +183,22 @@ struct PunchedGrid {
   }
 };
 
-const PunchedGrid& punched_grid() {
-  static const PunchedGrid instance;
-  return instance;
+// The punched grid of the benchmark's argument, made once.
+const PunchedGrid& punched_grid(int grid) {
+  static std::map<int, PunchedGrid> grids;
+  return grids.try_emplace(grid, grid).first->second;
 }
 
 void Repair_Rangefill(benchmark::State& state) {
-  for (auto _ : state) benchmark::DoNotOptimize(rangefill::repair(punched_grid().mesh));
+  const Mesh& mesh = punched_grid(static_cast<int>(state.range(0))).mesh;
+  for (auto _ : state) benchmark::DoNotOptimize(rangefill::repair(mesh));
 }
 
 void Repair_CgalFair(benchmark::State& state) {
+  const PunchedGrid& grid = punched_grid(static_cast<int>(state.range(0)));
   rangefill::BaselineOptions options;
-  options.holes = punched_grid().holes;
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(rangefill::fill_holes_cgal(punched_grid().mesh, options));
-  }
+  options.holes = grid.holes;
+  for (auto _ : state) benchmark::DoNotOptimize(rangefill::fill_holes_cgal(grid.mesh, options));
 }
 
 BENCHMARK(StartUp_True)->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -207,15 +210,24 @@ BENCHMARK(Read_AsciiPly)->Unit(benchmark::kMillisecond);
 BENCHMARK(Depth_Inpaint)->Unit(benchmark::kMillisecond);
 BENCHMARK(Depth_FillDefault)->Unit(benchmark::kMillisecond);
 BENCHMARK(Depth_FillFast)->Unit(benchmark::kMillisecond);
-BENCHMARK(Repair_Rangefill)->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK(Repair_CgalFair)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(Repair_Rangefill)
+    ->Arg(kGrid)
+    ->Arg(kLargeGrid)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK(Repair_CgalFair)
+    ->Arg(kGrid)
+    ->Arg(kLargeGrid)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 
 // The console report, keeping each benchmark's real time (its median when repeated).
 class RatioReporter : public benchmark::ConsoleReporter {
  public:
   void ReportRuns(const std::vector<Run>& runs) override {
     for (const Run& run : runs) {
-      const std::string name = run.run_name.function_name;
+      const std::string name =
+          run.run_name.function_name + (run.run_name.args.empty() ? "" : "/" + run.run_name.args);
       if (run.run_type == Run::RT_Aggregate ? run.aggregate_name == "median" : !times.count(name)) {
         times[name] = run.GetAdjustedRealTime();
       }
@@ -247,7 +259,8 @@ int main(int argc, char** argv) {
   ratio("read_mesh, 1 M faces, ASCII PLY", "Read_AsciiPly", "Read_AsciiBytes");
   ratio("fill_depth, VGA frame", "Depth_FillDefault", "Depth_Inpaint");
   ratio("fill_depth fast, VGA frame", "Depth_FillFast", "Depth_Inpaint");
-  ratio("repair, 1 M faces, 10 holes", "Repair_Rangefill", "Repair_CgalFair");
+  ratio("repair, 1 M faces, 10 holes", "Repair_Rangefill/708", "Repair_CgalFair/708");
+  ratio("repair, 10 M faces, 10 holes", "Repair_Rangefill/2236", "Repair_CgalFair/2236");
   if (reporter.times.count("Read_AsciiPly")) {
     std::printf("%-44s %9.0f MB/s\n", "read_mesh, ASCII PLY",
                 fs::file_size(files().ascii) / 1e6 / (reporter.times["Read_AsciiPly"] / 1e3));
