@@ -7,6 +7,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <cstring>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -32,9 +33,9 @@ py::object to_python(const nlohmann::json& value) {
   return py::module_::import("json").attr("loads")(value.dump());
 }
 
-// "uint16", "float32", ...
+// "uint16", "float32", ... (">u2" for a byte order not the machine's)
 std::string name_of(const py::dtype& dtype) {
-  return dtype.attr("name").cast<std::string>();
+  return py::str(static_cast<const py::handle&>(dtype)).cast<std::string>();
 }
 
 std::string shape_text(const py::array& array) {
@@ -193,6 +194,12 @@ Mesh make_python_mesh(const py::object& vertices, const py::object& faces,
   const char kind = indices ? indices.dtype().kind() : '?';
   if (indices && indices.size() > 0 && kind != 'i' && kind != 'u') {
     throw InvalidInput("faces: integer vertex indices expected, got " + name_of(indices.dtype()));
+  }
+  // Indices beyond int32 would wrap round to valid ones when cast.
+  if (indices && indices.size() > 0 &&
+      (indices.attr("max")().cast<double>() > std::numeric_limits<int>::max() ||
+       indices.attr("min")().cast<double>() < 0)) {
+    throw InvalidInput("faces: vertex indices must lie in [0, 2^31)");
   }
   Mesh mesh = make_mesh(rows_of<Vec3, double>(vertices, "vertices"),
                         rows_of<Triangle, int>(faces, "faces"));

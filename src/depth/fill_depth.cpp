@@ -313,6 +313,7 @@ InpainterOptions depth_inpainting_defaults() {
 DepthFillStats fill_depth(cv::InputArray depth_in, cv::InputArray mask_in, cv::OutputArray filled,
                           const DepthFillOptions& options) {
   check_depth_type(depth_in.type(), "fill_depth");
+  if (depth_in.empty()) throw InvalidInput("fill_depth: the depth image is empty");
   const cv::Mat depth = depth_in.getMat();
   const cv::Mat z = depth_in_metres(depth);
   cv::Mat to_fill, data;

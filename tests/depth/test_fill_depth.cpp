@@ -305,6 +305,7 @@ TEST(FillDepth, RefusesBadArguments) {
   }
   EXPECT_THROW(fill_depth(cv::Mat(48, 64, CV_8U), cv::noArray(), out), InvalidInput);
   EXPECT_THROW(fill_depth(cv::Mat(48, 64, CV_32FC3), cv::noArray(), out), InvalidInput);
+  EXPECT_THROW(fill_depth(cv::Mat(0, 0, CV_16UC1), cv::noArray(), out), InvalidInput);
   EXPECT_THROW(fill_depth(depth, cv::Mat::zeros(48, 64, CV_16U), out), InvalidInput);
   DepthFillOptions options;
   options.inpainter = "no-such-back-end";

@@ -126,6 +126,10 @@ def test_invalid_input_raises_value_error_naming_what_is_wrong():
         rangefill.fill_depth(depth, np.zeros((3, 3), bool))  # the mask's size
     with pytest.raises(ValueError, match="mask"):
         rangefill.inpaint(depth.astype(np.float32), np.zeros(depth.shape, np.float32), "ns")
+    with pytest.raises(ValueError, match="got >u2"):
+        rangefill.fill_depth(depth.astype(">u2"))
+    with pytest.raises(ValueError, match="empty"):
+        rangefill.fill_depth(np.zeros((0, 0), np.uint16))
 
 
 def test_file_errors_raise_os_error_or_value_error_naming_the_file(tmp_path):

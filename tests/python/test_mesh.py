@@ -135,3 +135,13 @@ def test_a_point_cloud_that_cannot_be_meshed_raises_processing_error():
     with pytest.raises(rangefill.ProcessingError, match="same place"):
         rangefill.repair(cloud)
     assert issubclass(rangefill.ProcessingError, RuntimeError)
+
+
+def test_face_indices_beyond_int32_are_refused_not_wrapped():
+    vertices, faces = icosphere(0)
+    wide = faces.astype(np.int64)
+    wide[0, 0] += 2 ** 32  # would wrap round to a valid index
+    with pytest.raises(ValueError, match="faces: vertex indices must lie in"):
+        rangefill.Mesh(vertices, wide)
+    with pytest.raises(ValueError, match="faces: vertex indices must lie in"):
+        rangefill.Mesh(vertices, -faces)
