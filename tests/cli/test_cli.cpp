@@ -454,6 +454,20 @@ TEST(Cli, DepthBenchMeasuresABackEnd) {
   fs::remove_all(dir);
 }
 
+// `rangefill bench` scores fills against the surface punched out of a closed mesh: an open sheet is
+// refused with the reason, before any work.
+TEST(Cli, BenchRefusesAMeshThatIsNotClosed) {
+  const fs::path dir = testing::temporary_directory("cli-bench-open");
+  write_mesh(testing::make_grid(8), dir / "sheet.ply");
+  const Outcome bench =
+      run("bench --meshes " + (dir / "sheet.ply").string() + " --out " + (dir / "out").string());
+  EXPECT_EQ(bench.exit_code, 3);
+  EXPECT_NE(bench.err.find("sheet.ply: not a closed 2-manifold (1 boundary loops"),
+            std::string::npos)
+      << bench.err;
+  EXPECT_FALSE(fs::exists(dir / "out" / "holes.csv"));
+}
+
 // `rangefill bench` on a sphere with two back-ends (on planes) and a baseline, each hole and method
 // in a process of its own: the summary as JSON; in --out a CSV row per hole and method, the
 // summary, the tables, three plots and the report with each hole's images; the same numbers at one

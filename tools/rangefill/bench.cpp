@@ -10,6 +10,7 @@
 #include "isolation.h"
 #include "rangefill/core/errors.h"
 #include "rangefill/eval/evaluation.h"
+#include "rangefill/eval/metrics.h"
 #include "rangefill/eval/punch.h"
 #include "rangefill/io/depth_io.h"
 
@@ -277,6 +278,19 @@ std::vector<BenchmarkMethod> bench_methods(const BenchCommand& command) {
   return methods;
 }
 
+// Throws InvalidInput unless `mesh` is a closed 2-manifold: the bench scores each fill against the
+// surface punched out of a closed mesh, and counts the outputs that come back closed.
+void check_closed(const Mesh& mesh, const std::string& file) {
+  const ManifoldCheck check = check_manifold(mesh);
+  if (check.closed_manifold()) return;
+  throw InvalidInput(file + ": not a closed 2-manifold (" + std::to_string(check.boundary_loops) +
+                     " boundary loops, " + std::to_string(check.nonmanifold_edges) +
+                     " non-manifold edges, " + std::to_string(check.misoriented_edges) +
+                     " misoriented edges, " + std::to_string(check.nonmanifold_vertices) +
+                     " non-manifold vertices); the bench punches closed meshes (close it first: "
+                     "rangefill repair --fill-all)");
+}
+
 // Each mesh punched with its own seed; its holes appended to `results`, and for each benchmark
 // hole its mesh and its index there to `hole_of`.
 std::vector<Punched> punch_meshes(const BenchCommand& command, const std::vector<fs::path>& files,
@@ -296,6 +310,7 @@ std::vector<Punched> punch_meshes(const BenchCommand& command, const std::vector
     Punched mesh;
     mesh.name = file.filename().string();
     mesh.original = load_mesh(file.string());
+    check_closed(mesh.original, file.string());
     mesh.mean_edge = mean_edge_length(mesh.original);
     PunchOptions options = punch_options;
     options.seed = seed_for_mesh(command.punch.seed, mesh.name);
