@@ -371,9 +371,9 @@ void add_mesh_class(py::module_& module) {
 outside); colors: N×3 RGB in [0, 1]; normals: N×3. Raises ValueError on an index out of range, a
 repeated index in a face or a non-finite coordinate.)")
       .def("__repr__", [](const Mesh& mesh) {
-        return "rangefill.Mesh(" + std::to_string(mesh.vertex_count()) + " vertices, " +
-               std::to_string(mesh.face_count()) + " faces" +
-               (mesh.has_colors() ? ", colours" : "") + (mesh.has_normals() ? ", normals" : "") +
+        return "rangefill.Mesh(vertices=" + std::to_string(mesh.vertex_count()) +
+               ", faces=" + std::to_string(mesh.face_count()) +
+               (mesh.has_colors() ? ", colors" : "") + (mesh.has_normals() ? ", normals" : "") +
                ")";
       });
   add_view<&Mesh::positions, double, 3>(mesh_class, "vertices");
