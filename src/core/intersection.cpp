@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <mutex>
+#include <numeric>
 #include <set>
 
 #include "core/cgal_triangles.h"
@@ -14,13 +15,18 @@ namespace rangefill {
 using namespace cgal_triangles;
 
 // The faces in uniform grids: grid k has cubes of 3·4^k times the mean face extent and holds the
-// faces too large for grid k − 1, each in the cell of its bounding box's low corner. A query reads,
-// in each grid, the cells its own box meets and those one cell lower, so its cost follows the
-// faces near it, not the mesh, whatever the spread of the face sizes.
+// faces too large for grid k − 1, each in the cell of its bounding box's low corner. A grid hashes
+// its cells into buckets, filled by a counting sort. A query reads, in each grid, the cells its
+// own box meets and those one cell lower, so its cost follows the faces near it, not the mesh,
+// whatever the spread of the face sizes.
 struct IntersectionIndex::Tree {
   struct Grid {
     double cell = 1;
-    std::vector<std::pair<std::uint64_t, int>> cell_faces;  // (cell key, face), sorted
+    std::vector<int> bucket_offsets;                   // CSR over the buckets, size B + 1
+    std::vector<std::pair<std::uint64_t, int>> cells;  // (cell key, face), grouped by bucket
+    size_t bucket(std::uint64_t key) const {
+      return (key * 0x9E3779B97F4A7C15ull >> 20) % (bucket_offsets.size() - 1);
+    }
   };
   static constexpr long long kAxisCells = 1 << 21;
   using Cells = std::array<std::array<long long, 2>, 3>;  // first and last cell on each axis
@@ -61,30 +67,56 @@ struct IntersectionIndex::Tree {
     const int face_count = static_cast<int>(corners.size());
     Vec3 low = Vec3::Constant(std::numeric_limits<double>::max()), high = -low;
     double extent = 0;
+    std::vector<double> extents(face_count);
     for (int face = 0; face < face_count; ++face) {
       const auto [face_low, face_high] = box(face);
       low = low.cwiseMin(face_low);
       high = high.cwiseMax(face_high);
-      extent += (face_high - face_low).maxCoeff();
+      extents[face] = (face_high - face_low).maxCoeff();
+      extent += extents[face];
     }
     origin = low;
     // No more than kAxisCells cells along an axis.
     const double first_cell =
         std::max({3 * extent / face_count, (high - low).maxCoeff() / (kAxisCells - 2),
                   std::numeric_limits<double>::min()});
+    std::vector<std::uint8_t> levels(face_count);
+    std::vector<int> level_sizes;
     for (int face = 0; face < face_count; ++face) {
-      const auto [face_low, face_high] = box(face);
-      const double face_extent = (face_high - face_low).maxCoeff();
       size_t level = 0;
-      while (level < grids.size() && grids[level].cell < face_extent) ++level;
-      while (level == grids.size() || grids[level].cell < face_extent) {
-        grids.push_back({grids.empty() ? first_cell : 4 * grids.back().cell, {}});
+      while (level < grids.size() && grids[level].cell < extents[face]) ++level;
+      while (level == grids.size() || grids[level].cell < extents[face]) {
+        grids.push_back({grids.empty() ? first_cell : 4 * grids.back().cell, {}, {}});
+        level_sizes.push_back(0);
         level = grids.size() - 1;
       }
-      const Cells at = cells(face_low, face_low, grids[level].cell);
-      grids[level].cell_faces.emplace_back(key(at[0][0], at[1][0], at[2][0]), face);
+      levels[face] = static_cast<std::uint8_t>(level);
+      ++level_sizes[level];
     }
-    for (Grid& grid : grids) std::sort(grid.cell_faces.begin(), grid.cell_faces.end());
+    for (size_t level = 0; level < grids.size(); ++level) {
+      grids[level].bucket_offsets.assign(static_cast<size_t>(level_sizes[level]) + 2, 0);
+      grids[level].cells.resize(level_sizes[level]);
+    }
+    std::vector<std::uint64_t> keys(face_count);
+    for (int face = 0; face < face_count; ++face) {
+      Grid& grid = grids[levels[face]];
+      const Cells at = cells(box(face).first, box(face).first, grid.cell);
+      keys[face] = key(at[0][0], at[1][0], at[2][0]);
+      ++grid.bucket_offsets[grid.bucket(keys[face]) + 1];
+    }
+    for (Grid& grid : grids) {
+      std::partial_sum(grid.bucket_offsets.begin(), grid.bucket_offsets.end(),
+                       grid.bucket_offsets.begin());
+    }
+    std::vector<std::vector<int>> cursors(grids.size());
+    for (size_t level = 0; level < grids.size(); ++level) {
+      cursors[level].assign(grids[level].bucket_offsets.begin(),
+                            grids[level].bucket_offsets.end() - 1);
+    }
+    for (int face = 0; face < face_count; ++face) {
+      Grid& grid = grids[levels[face]];
+      grid.cells[cursors[levels[face]][grid.bucket(keys[face])]++] = {keys[face], face};
+    }
   }
 
   // Faces whose bounding box meets [low, high], each once, unordered.
@@ -92,18 +124,17 @@ struct IntersectionIndex::Tree {
     std::vector<int> faces;
     for (const Grid& grid : grids) {
       const Cells range = cells(low - Vec3::Constant(grid.cell), high, grid.cell);
-      if (count(range) > static_cast<long long>(grid.cell_faces.size())) {  // read them all
-        for (const auto& entry : grid.cell_faces) faces.push_back(entry.second);
+      if (count(range) > static_cast<long long>(grid.cells.size())) {  // read them all
+        for (const auto& entry : grid.cells) faces.push_back(entry.second);
         continue;
       }
       for (long long z = range[2][0]; z <= range[2][1]; ++z) {
         for (long long y = range[1][0]; y <= range[1][1]; ++y) {
           for (long long x = range[0][0]; x <= range[0][1]; ++x) {
             const std::uint64_t cell = key(x, y, z);
-            auto at = std::lower_bound(grid.cell_faces.begin(), grid.cell_faces.end(),
-                                       std::make_pair(cell, 0));
-            for (; at != grid.cell_faces.end() && at->first == cell; ++at) {
-              faces.push_back(at->second);
+            const size_t bucket = grid.bucket(cell);
+            for (int i = grid.bucket_offsets[bucket]; i < grid.bucket_offsets[bucket + 1]; ++i) {
+              if (grid.cells[i].first == cell) faces.push_back(grid.cells[i].second);
             }
           }
         }

@@ -7,17 +7,6 @@ namespace rangefill {
 
 namespace {
 
-// Stable counting sort of `items` by key(item) in [0, key_count).
-template <typename Key>
-std::vector<int> counting_sort(const std::vector<int>& items, int key_count, Key key) {
-  std::vector<int> offsets(static_cast<size_t>(key_count) + 1, 0);
-  for (int item : items) ++offsets[key(item) + 1];
-  std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
-  std::vector<int> sorted(items.size());
-  for (int item : items) sorted[offsets[key(item)]++] = item;
-  return sorted;
-}
-
 int find_root(std::vector<int>& parent, int x) {
   while (parent[x] != x) {
     parent[x] = parent[parent[x]];
@@ -43,52 +32,54 @@ void build_vertex_faces(const Mesh& mesh, MeshTopology& topology) {
   }
 }
 
-// Groups half-edges into undirected edges (radix sort on (min, max) vertex) and pairs opposites.
+// Groups half-edges into undirected edges, ordered by (lower vertex, higher vertex, half-edge),
+// and pairs opposites. The half-edges of the edges whose lower end is v are among v's faces.
 void build_edges(const Mesh& mesh, MeshTopology& topology) {
   const int halfedge_count = 3 * mesh.face_count();
   auto source = [&](int h) { return topology.halfedge_source(mesh, h); };
   auto target = [&](int h) { return topology.halfedge_target(mesh, h); };
-  // Each half-edge's ends, read once from the faces: the sorts below read them again and again.
-  std::vector<int> lows(halfedge_count), highs(halfedge_count);
-  for (int h = 0; h < halfedge_count; ++h) {
-    lows[h] = std::min(source(h), target(h));
-    highs[h] = std::max(source(h), target(h));
-  }
-  auto low = [&](int h) { return lows[h]; };
-  auto high = [&](int h) { return highs[h]; };
-
-  std::vector<int> halfedges(halfedge_count);
-  std::iota(halfedges.begin(), halfedges.end(), 0);
-  halfedges = counting_sort(halfedges, mesh.vertex_count(), high);
-  topology.edge_halfedges = counting_sort(halfedges, mesh.vertex_count(), low);
-
   topology.opposite.assign(halfedge_count, kBoundary);
   topology.halfedge_edge.assign(halfedge_count, -1);
   topology.edges.clear();
-  const std::vector<int>& sorted = topology.edge_halfedges;
-  for (int begin = 0; begin < halfedge_count;) {
-    int end = begin + 1;
-    while (end < halfedge_count && low(sorted[end]) == low(sorted[begin]) &&
-           high(sorted[end]) == high(sorted[begin])) {
-      ++end;
-    }
-    const int edge = static_cast<int>(topology.edges.size());
-    topology.edges.push_back({low(sorted[begin]), high(sorted[begin]), begin, end - begin});
-    for (int i = begin; i < end; ++i) topology.halfedge_edge[sorted[i]] = edge;
-    if (end - begin == 2) {
-      const int a = sorted[begin], b = sorted[begin + 1];
-      if (source(a) == target(b)) {
-        topology.opposite[a] = b;
-        topology.opposite[b] = a;
-      } else {
-        topology.opposite[a] = topology.opposite[b] = kNonManifold;
-        ++topology.misoriented_edge_count;
+  topology.edges.reserve(halfedge_count / 2 + 1);  // a closed mesh's count
+  topology.edge_halfedges.clear();
+  topology.edge_halfedges.reserve(halfedge_count);
+  std::vector<std::pair<int, int>> upward;  // (higher vertex, half-edge) of the edges leaving v up
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    upward.clear();
+    for (int i = topology.faces_of_vertex_begin(v); i < topology.faces_of_vertex_end(v); ++i) {
+      const int face = topology.vertex_faces[i];
+      for (int h = 3 * face; h < 3 * face + 3; ++h) {
+        if (std::min(source(h), target(h)) == v)
+          upward.emplace_back(std::max(source(h), target(h)), h);
       }
-    } else if (end - begin > 2) {
-      for (int i = begin; i < end; ++i) topology.opposite[sorted[i]] = kNonManifold;
-      ++topology.nonmanifold_edge_count;
     }
-    begin = end;
+    std::sort(upward.begin(), upward.end());
+    for (size_t begin = 0; begin < upward.size();) {
+      size_t end = begin + 1;
+      while (end < upward.size() && upward[end].first == upward[begin].first) ++end;
+      const int edge = static_cast<int>(topology.edges.size());
+      const int first = static_cast<int>(topology.edge_halfedges.size());
+      topology.edges.push_back({v, upward[begin].first, first, static_cast<int>(end - begin)});
+      for (size_t i = begin; i < end; ++i) {
+        topology.halfedge_edge[upward[i].second] = edge;
+        topology.edge_halfedges.push_back(upward[i].second);
+      }
+      if (end - begin == 2) {
+        const int a = upward[begin].second, b = upward[begin + 1].second;
+        if (source(a) == target(b)) {
+          topology.opposite[a] = b;
+          topology.opposite[b] = a;
+        } else {
+          topology.opposite[a] = topology.opposite[b] = kNonManifold;
+          ++topology.misoriented_edge_count;
+        }
+      } else if (end - begin > 2) {
+        for (size_t i = begin; i < end; ++i) topology.opposite[upward[i].second] = kNonManifold;
+        ++topology.nonmanifold_edge_count;
+      }
+      begin = end;
+    }
   }
 }
 
@@ -234,12 +225,21 @@ MeshDefects find_defects(const Mesh& mesh, const MeshTopology& topology) {
   defects.nonmanifold_edges = topology.nonmanifold_edge_count;
   defects.misoriented_edges = topology.misoriented_edge_count;
   defects.nonmanifold_vertices = static_cast<int>(topology.nonmanifold_vertices.size());
-  std::vector<Triangle> sorted = mesh.triangles;
-  for (Triangle& t : sorted) std::sort(t.begin(), t.end());
-  std::sort(sorted.begin(), sorted.end());
-  defects.duplicated_faces = static_cast<int>(
-      sorted.size() - (std::unique(sorted.begin(), sorted.end()) - sorted.begin()));
+  auto sorted_corners = [&](int face) {
+    Triangle t = mesh.triangles[face];
+    std::sort(t.begin(), t.end());
+    return t;
+  };
   for (int f = 0; f < mesh.face_count(); ++f) {
+    // A face on the same vertices as an earlier one shares its first edge.
+    const Edge& edge = topology.edges[topology.halfedge_edge[3 * f]];
+    for (int i = edge.first; i < edge.first + edge.count; ++i) {
+      const int other = halfedge_face(topology.edge_halfedges[i]);
+      if (other < f && sorted_corners(other) == sorted_corners(f)) {
+        ++defects.duplicated_faces;
+        break;
+      }
+    }
     if (is_degenerate(mesh, f)) ++defects.degenerate_faces;
   }
   return defects;
