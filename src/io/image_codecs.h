@@ -1,8 +1,8 @@
-// Internal: PNG, TIFF and EXR images in memory, through libpng, libtiff and OpenEXR. Not installed.
+// Internal: PNG, TIFF and EXR images in memory, through libpng, libtiff and OpenEXR (the last two
+// in a module loaded when first needed, io/tiff_exr.h). Not installed.
 //
 // OpenCV's imgcodecs would do the same, but it loads some 140 shared libraries (GDAL, Poppler,
-// HEIF, ...) when a program starts, 70 ms of every run of the rangefill program; these three
-// load in 3 ms.
+// HEIF, ...) when a program starts, 70 ms of every run of the rangefill program.
 #pragma once
 
 #include <string>

@@ -16,6 +16,17 @@ namespace {
 
 using Cloud = pcl::PointCloud<pcl::PointXYZ>;
 
+/// The points as a PCL cloud (single precision).
+Cloud::Ptr to_cloud(const std::vector<Vec3>& points) {
+  Cloud::Ptr cloud(new Cloud);
+  cloud->reserve(points.size());
+  for (const Vec3& p : points) {
+    cloud->push_back(pcl::PointXYZ(static_cast<float>(p.x()), static_cast<float>(p.y()),
+                                   static_cast<float>(p.z())));
+  }
+  return cloud;
+}
+
 // PCL's normal estimate of each point, turned away from the centroid.
 std::vector<Vec3> estimated_normals(const std::vector<Vec3>& points, const Cloud::Ptr& xyz,
                                     int neighbours) {

@@ -7,9 +7,6 @@
 
 #include <vector>
 
-#include <pcl/point_cloud.h>
-#include <pcl/point_types.h>
-
 #include "rangefill/core/mesh.h"
 #include "rangefill/repair/point_cloud.h"
 
@@ -24,16 +21,5 @@ constexpr const char* kEntry = "rangefill_greedy_projection";
 /// the centroid, and returned there.
 using Entry = void (*)(const std::vector<Vec3>& points, std::vector<Vec3>& normals, double spacing,
                        const GreedyMeshingOptions& options, std::vector<Triangle>& triangles);
-
-/// The points as a PCL cloud (single precision).
-inline pcl::PointCloud<pcl::PointXYZ>::Ptr to_cloud(const std::vector<Vec3>& points) {
-  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
-  cloud->reserve(points.size());
-  for (const Vec3& p : points) {
-    cloud->push_back(pcl::PointXYZ(static_cast<float>(p.x()), static_cast<float>(p.y()),
-                                   static_cast<float>(p.z())));
-  }
-  return cloud;
-}
 
 }  // namespace rangefill::greedy_projection

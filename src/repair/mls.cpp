@@ -1,22 +1,20 @@
-// The only translation unit that includes PCL (its kd-tree).
 #include "rangefill/repair/mls.h"
 
 #include <cmath>
 
-#include <pcl/kdtree/kdtree_flann.h>
-#include <pcl/point_types.h>
 #include <Eigen/Dense>
+
+#include "core/nearest_points.h"
 
 namespace rangefill {
 
 struct MlsSurface::Index {
-  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud{new pcl::PointCloud<pcl::PointXYZ>};
-  pcl::KdTreeFLANN<pcl::PointXYZ> tree{false};  // unsorted results: we sort nothing by distance
+  NearestPoints tree;
 };
 
 MlsSurface::MlsSurface(std::vector<Vec3> samples, std::vector<Vec3> normals,
                        const MlsOptions& options)
-    : index_(std::make_unique<Index>()),
+    : index_(std::make_unique<Index>(Index{NearestPoints({})})),
       samples_(std::move(samples)),
       normals_(std::move(normals)),
       options_(options) {
@@ -26,12 +24,7 @@ MlsSurface::MlsSurface(std::vector<Vec3> samples, std::vector<Vec3> normals,
 void MlsSurface::add_samples(const std::vector<Vec3>& samples, const std::vector<Vec3>& normals) {
   samples_.insert(samples_.end(), samples.begin(), samples.end());
   if (!normals_.empty()) normals_.insert(normals_.end(), normals.begin(), normals.end());
-  index_->cloud->clear();
-  for (const Vec3& p : samples_) {
-    index_->cloud->push_back(pcl::PointXYZ(static_cast<float>(p.x()), static_cast<float>(p.y()),
-                                           static_cast<float>(p.z())));
-  }
-  if (!samples_.empty()) index_->tree.setInputCloud(index_->cloud);
+  index_->tree = NearestPoints(samples_);
 }
 
 MlsSurface::~MlsSurface() = default;
@@ -46,11 +39,8 @@ void MlsSurface::neighbourhood(const Vec3& p, const Vec3& facing, std::vector<in
   indices.clear();
   h = 0;
   if (samples_.empty()) return;
-  std::vector<float> squared;
-  const int k = std::min<int>(options_.neighbours, static_cast<int>(samples_.size()));
-  index_->tree.nearestKSearch(pcl::PointXYZ(static_cast<float>(p.x()), static_cast<float>(p.y()),
-                                            static_cast<float>(p.z())),
-                              k, indices, squared);
+  std::vector<double> squared;
+  index_->tree.nearest(p, options_.neighbours, indices, squared);
   if (!normals_.empty() && facing.squaredNorm() > 0) {
     std::vector<int> facing_indices;
     for (int i : indices) {

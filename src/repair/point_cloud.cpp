@@ -1,20 +1,17 @@
-// Meshing point clouds: PCL's search here, its normal estimation and greedy projection in the
-// module of repair/greedy_projection.h.
+// Meshing point clouds: PCL's normal estimation and greedy projection are in the module of
+// repair/greedy_projection.h.
 #include "rangefill/repair/point_cloud.h"
-
-#include <dlfcn.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <filesystem>
 #include <functional>
 #include <numeric>
 #include <set>
 #include <unordered_map>
 
-#include <pcl/search/kdtree.h>
-
+#include "core/module_loader.h"
+#include "core/nearest_points.h"
 #include "rangefill/core/errors.h"
 #include "rangefill/core/topology.h"
 #include "repair/greedy_projection.h"
@@ -33,42 +30,17 @@ std::string mesher_name(Mesher mesher) {
 
 namespace {
 
-using Cloud = pcl::PointCloud<pcl::PointXYZ>;
-
 // Rounds of orienting and dropping faces in make_oriented_manifold; a few suffice in practice.
 constexpr int kCleaningRounds = 16;
 // Two faces on an edge whose normals make more than 120° are folded onto each other.
 constexpr double kFoldCosine = -0.5;
 
-double mean_spacing(const Cloud::Ptr& cloud, pcl::search::KdTree<pcl::PointXYZ>& tree) {
-  if (cloud->size() < 2) return 0;
-  double sum = 0;
-  std::vector<int> indices;
-  std::vector<float> squared;
-  for (int i = 0; i < static_cast<int>(cloud->size()); ++i) {
-    tree.nearestKSearch(i, 2, indices, squared);
-    // The nearest is the point itself, unless it has a duplicate, which is as near.
-    sum += std::sqrt(static_cast<double>(squared.back()));
-  }
-  return sum / static_cast<double>(cloud->size());
-}
-
 // The greedy projection's entry in its module (repair/greedy_projection.h), loaded on the first
 // call from beside this library.
 greedy_projection::Entry greedy_projection_entry() {
-  static const greedy_projection::Entry entry = [] {
-    Dl_info library;
-    if (dladdr(reinterpret_cast<void*>(&mesh_point_cloud), &library) == 0 || !library.dli_fname) {
-      throw ProcessingError("meshing: cannot tell where librangefill is");
-    }
-    const std::string module =
-        (std::filesystem::path(library.dli_fname).parent_path() / greedy_projection::kModule)
-            .string();
-    void* handle = dlopen(module.c_str(), RTLD_NOW | RTLD_LOCAL);
-    void* symbol = handle ? dlsym(handle, greedy_projection::kEntry) : nullptr;
-    if (!symbol) throw ProcessingError("meshing: cannot load " + module + ": " + dlerror());
-    return reinterpret_cast<greedy_projection::Entry>(symbol);
-  }();
+  static const auto entry = reinterpret_cast<greedy_projection::Entry>(
+      module_entry(greedy_projection::kModule, greedy_projection::kEntry,
+                   reinterpret_cast<const void*>(&mesh_point_cloud), "meshing"));
   return entry;
 }
 
@@ -217,10 +189,16 @@ void make_oriented_manifold(const std::vector<Vec3>& positions, const std::vecto
 
 double mean_point_spacing(const std::vector<Vec3>& points) {
   if (points.size() < 2) return 0;
-  const Cloud::Ptr cloud = greedy_projection::to_cloud(points);
-  pcl::search::KdTree<pcl::PointXYZ> tree;
-  tree.setInputCloud(cloud);
-  return mean_spacing(cloud, tree);
+  const NearestPoints tree(points);
+  double sum = 0;
+  std::vector<int> indices;
+  std::vector<double> squared;
+  for (const Vec3& p : points) {
+    tree.nearest(p, 2, indices, squared);
+    // The nearest is the point itself, unless it has a duplicate, which is as near.
+    sum += std::sqrt(squared.back());
+  }
+  return sum / static_cast<double>(points.size());
 }
 
 Mesh mesh_point_cloud(const Mesh& cloud, const GreedyMeshingOptions& options) {
@@ -231,10 +209,7 @@ Mesh mesh_point_cloud(const Mesh& cloud, const GreedyMeshingOptions& options) {
         options.max_angle > options.min_angle && options.normal_neighbours >= 3)) {
     throw InvalidInput("meshing: greedy projection options out of range");
   }
-  const Cloud::Ptr xyz = greedy_projection::to_cloud(cloud.positions);
-  pcl::search::KdTree<pcl::PointXYZ> tree;
-  tree.setInputCloud(xyz);
-  const double spacing = mean_spacing(xyz, tree);
+  const double spacing = mean_point_spacing(cloud.positions);
   if (!(spacing > 0)) throw ProcessingError("meshing: every point is at the same place");
   std::vector<Vec3> normals = cloud.has_normals() ? cloud.normals : std::vector<Vec3>();
   std::vector<Triangle> triangles;
