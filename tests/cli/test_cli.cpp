@@ -466,6 +466,7 @@ TEST(Cli, BenchRefusesAMeshThatIsNotClosed) {
             std::string::npos)
       << bench.err;
   EXPECT_FALSE(fs::exists(dir / "out" / "holes.csv"));
+  fs::remove_all(dir);
 }
 
 // `rangefill bench` on a sphere with two back-ends (on planes) and a baseline, each hole and method
@@ -522,6 +523,145 @@ TEST(Cli, BenchComparesMethodsAndWritesItsReport) {
   EXPECT_NE(slurp(dir / "late.csv").find("timed out after 1e-06 s"), std::string::npos);
   EXPECT_EQ(run(common + " --baselines meshlab").exit_code, 2);
   EXPECT_EQ(run(common + " --shapes square").exit_code, 2);
+  fs::remove_all(dir);
+}
+
+// The fields of one CSV line (quoted fields may hold commas and doubled quotes).
+std::vector<std::string> csv_fields(const std::string& line) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (size_t i = 0; i < line.size(); ++i) {
+    if (line[i] == '"' && quoted && i + 1 < line.size() && line[i + 1] == '"') {
+      fields.back() += '"';
+      ++i;
+    } else if (line[i] == '"') {
+      quoted = !quoted;
+    } else if (line[i] == ',' && !quoted) {
+      fields.emplace_back();
+    } else {
+      fields.back() += line[i];
+    }
+  }
+  return fields;
+}
+
+// holes.csv without the columns of times (their names end in "seconds", "_s").
+std::vector<std::vector<std::string>> csv_without_times(const std::string& csv) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream lines(csv);
+  std::vector<bool> time_column;
+  for (std::string line; std::getline(lines, line);) {
+    const std::vector<std::string> fields = csv_fields(line);
+    if (time_column.empty()) {
+      for (const std::string& name : fields) {
+        time_column.push_back(name == "seconds" ||
+                              (name.size() > 2 && name.compare(name.size() - 2, 2, "_s") == 0));
+      }
+    }
+    rows.emplace_back();
+    for (size_t k = 0; k < fields.size(); ++k) {
+      if (!time_column.at(k)) rows.back().push_back(fields[k]);
+    }
+  }
+  return rows;
+}
+
+// `rangefill bench --shard K/N` runs a share of the (hole, method) jobs; `--merge` of the shards
+// gives the unsharded run's holes.csv (times aside) and summary, and refuses a missing shard, a
+// shard given twice and a shard of another run.
+TEST(Cli, BenchShardsMergeIntoTheUnshardedRun) {
+  const fs::path dir = testing::temporary_directory("cli-bench-shards");
+  write_mesh(testing::make_sphere(16), dir / "sphere.ply");
+  const std::string common = "bench --meshes " + (dir / "sphere.ply").string() +
+                             " --holes-per-mesh 3 --seed 4 --max-radius 6 --inpainters "
+                             "harmonic,ns --filler plane --baselines cgal-triangulate";
+  const Outcome whole = run(common + " --json --out " + (dir / "whole").string());
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  for (const char* shard : {"0/2", "1/2"}) {
+    const std::string out = (dir / ("shard" + std::string(1, shard[0]))).string();
+    const Outcome part = run(common + " --shard " + shard + " --out " + out);
+    ASSERT_EQ(part.exit_code, 0) << part.err;
+  }
+  const nlohmann::json shard0 = nlohmann::json::parse(slurp(dir / "shard0" / "shard-0-of-2.json"));
+  std::vector<std::string> jobs;
+  for (const auto& [job, entry] : shard0["runs"].items()) jobs.push_back(job);
+  EXPECT_EQ(jobs, (std::vector<std::string>{"0", "2", "4", "6", "8"}));
+  const Outcome merged =
+      run("bench --merge " + (dir / "shard0").string() + " " + (dir / "shard1").string() +
+          " --json --out " + (dir / "merged").string());
+  ASSERT_EQ(merged.exit_code, 0) << merged.err;
+  const auto rows = csv_without_times(slurp(dir / "merged" / "holes.csv"));
+  EXPECT_EQ(rows.size(), 1u + 3 * 3);
+  EXPECT_EQ(rows, csv_without_times(slurp(dir / "whole" / "holes.csv")));
+  nlohmann::json merged_summary = nlohmann::json::parse(merged.out);
+  nlohmann::json whole_summary = nlohmann::json::parse(whole.out);
+  for (nlohmann::json* document : {&merged_summary, &whole_summary}) {
+    for (auto& [method, figures] : (*document)["methods"].items())
+      figures.erase("seconds_per_hole_median");
+  }
+  EXPECT_EQ(merged_summary, whole_summary);
+  EXPECT_NE(slurp(dir / "merged" / "summary.json").find("(merged from 2 shards)"),
+            std::string::npos);
+
+  const Outcome missing =
+      run("bench --merge " + (dir / "shard0").string() + " --out " + (dir / "m1").string());
+  EXPECT_EQ(missing.exit_code, 3);
+  EXPECT_NE(missing.err.find("shards 1 of 2 are missing"), std::string::npos) << missing.err;
+  const Outcome twice = run("bench --merge " + (dir / "shard0").string() + " " +
+                            (dir / "shard0").string() + " --out " + (dir / "m2").string());
+  EXPECT_EQ(twice.exit_code, 3);
+  EXPECT_NE(twice.err.find("shard 0 again"), std::string::npos) << twice.err;
+  const std::string other_seed = common.substr(0, common.find("--seed 4")) + "--seed 5" +
+                                 common.substr(common.find("--seed 4") + 8);
+  ASSERT_EQ(run(other_seed + " --shard 1/2 --out " + (dir / "other").string()).exit_code, 0);
+  const Outcome mixed = run("bench --merge " + (dir / "shard0").string() + " " +
+                            (dir / "other").string() + " --out " + (dir / "m3").string());
+  EXPECT_EQ(mixed.exit_code, 3);
+  EXPECT_NE(mixed.err.find("from another bench run"), std::string::npos) << mixed.err;
+  EXPECT_EQ(run(common + " --shard 2/2 --out " + (dir / "bad").string()).exit_code, 2);
+  EXPECT_EQ(run(common + " --shard 0/2").exit_code, 2);  // no --out
+  fs::remove_all(dir);
+}
+
+// `rangefill repair --batch DIR --out-dir DIR --shard K/N`: the shards split the directory's
+// meshes in name order, each output the bytes of the file's own repair; a file that cannot be
+// read is skipped and said (exit 5) while the others are written; the input directory is refused
+// as the output.
+TEST(Cli, RepairBatchShardsADirectory) {
+  const fs::path dir = testing::temporary_directory("cli-repair-batch");
+  fs::create_directories(dir / "in");
+  const Mesh holed =
+      testing::remove_faces(testing::make_sphere(12), [](const Vec3& p) { return p.z() > 0.93; });
+  for (const char* name : {"a.ply", "b.obj", "c.ply"}) write_mesh(holed, dir / "in" / name);
+  {
+    std::ofstream bad(dir / "in" / "d.ply");
+    bad << "ply\nformat binary_little_endian 1.0\nelement vertex 3\n";
+  }
+  const std::string batch =
+      "repair --batch " + (dir / "in").string() + " --out-dir " + (dir / "out").string();
+  const Outcome first = run(batch + " --shard 0/2");
+  EXPECT_EQ(first.exit_code, 0) << first.err;
+  EXPECT_NE(first.out.find("2 files (shard 0/2 of 4), 2 written"), std::string::npos) << first.out;
+  EXPECT_TRUE(fs::exists(dir / "out" / "a.ply") && fs::exists(dir / "out" / "c.ply"));
+  EXPECT_FALSE(fs::exists(dir / "out" / "b.obj"));
+  const Outcome second = run(batch + " --shard 1/2");
+  EXPECT_EQ(second.exit_code, 5);
+  EXPECT_NE(second.err.find("rangefill: skipped " + (dir / "in" / "d.ply").string()),
+            std::string::npos)
+      << second.err;
+  ASSERT_TRUE(fs::exists(dir / "out" / "b.obj"));
+  EXPECT_FALSE(fs::exists(dir / "out" / "d.ply"));
+  for (const char* name : {"a.ply", "b.obj"}) {
+    const fs::path single = dir / (std::string("single-") + name);
+    ASSERT_EQ(run("repair " + (dir / "in" / name).string() + " -o " + single.string()).exit_code,
+              0);
+    EXPECT_EQ(slurp(dir / "out" / name), slurp(single)) << name;
+    EXPECT_EQ(check_manifold(read_mesh(dir / "out" / name).mesh).boundary_loops, 0) << name;
+  }
+  EXPECT_EQ(run("repair --batch " + (dir / "in").string() + " --out-dir " + (dir / "in").string())
+                .exit_code,
+            2);
+  EXPECT_EQ(run(batch + " " + (dir / "in" / "a.ply").string()).exit_code, 2);
   fs::remove_all(dir);
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <numeric>
 #include <sstream>
 
 #include "bench_report.h"
@@ -25,7 +26,8 @@ struct BenchCommand {
   std::vector<std::string> meshes;
   std::string inpainters, baselines, trends = "auto", csv, save, out,
                                      filler = filler_name(kDefaultFiller);
-  std::string fallback = kDefaultFallbacks, shapes = "disk,elongated";
+  std::string fallback = kDefaultFallbacks, shapes = "disk,elongated", shard;
+  std::vector<std::string> merge;  // shard directories to make the report of
   PunchOptions punch = [] {
     PunchOptions options;
     options.max_radius = 20;
@@ -126,21 +128,26 @@ std::string run_json(const HoleRun& run, bool images, bool patch) {
   return j.dump();
 }
 
-// The run a child reported, or a failed one when the child did not report.
-BenchRun run_from_child(const ChildResult& child, const BenchHole& hole, Mesh& patch) {
+// What a child reported for one job, as kept in a shard file: its run (run_json), or why it did
+// not report and how long it took.
+json job_entry(const ChildResult& child) {
+  if (child.completed) return json::parse(child.output);
+  return {{"failure", child.failure}, {"wall_seconds", child.seconds}};
+}
+
+// The run of a job entry (job_entry); its patch, if it sent one, into `patch`.
+BenchRun run_from_entry(const json& j, const BenchHole& hole, Mesh& patch) {
   BenchRun run;
-  run.score.hole = hole.index;
-  run.score.area = hole.hole.area;
-  run.wall_seconds = child.seconds;
-  if (!child.completed) {
-    run.score.failure = child.failure;
+  run.wall_seconds = j.at("wall_seconds");
+  if (!j.contains("score")) {
+    run.score.hole = hole.index;
+    run.score.area = hole.hole.area;
+    run.score.failure = j.at("failure");
     return run;
   }
-  const json j = json::parse(child.output);
   run.score = score_from_json(j.at("score"));
   run.self_intersections = j.at("self_intersections");
   run.manifold = j.at("manifold");
-  run.wall_seconds = j.at("wall_seconds");
   if (j.contains("images")) {
     run.depth_png = j["images"][0];
     run.mask_png = j["images"][1];
@@ -352,28 +359,227 @@ void save_meshes(const BenchCommand& command, const std::vector<Punched>& meshes
   }
 }
 
-// --out: holes.csv, summary.json, tables.md, the plots and report.html.
+// --out: holes.csv, summary.json, tables.md, the plots and report.html; `made_by` is the command
+// that ran the jobs.
 void write_report(const BenchCommand& command, const BenchResults& results,
-                  const BenchSummary& summary, const std::string& table,
+                  const BenchSummary& summary, const std::string& table, const std::string& made_by,
                   const std::vector<fs::path>& inputs) {
   const fs::path dir = command.out;
   fs::create_directories(dir);
   json document = summary_json(results, summary);
-  document["command"] = command_line();
+  document["command"] = made_by;
   write_output(table, dir / "holes.csv", inputs);
   write_output(document.dump(2) + "\n", dir / "summary.json", inputs);
-  write_output(
-      "# rangefill bench\n\n`" + command_line() + "`\n\n" + markdown_tables(results, summary),
-      dir / "tables.md", inputs);
+  write_output("# rangefill bench\n\n`" + made_by + "`\n\n" + markdown_tables(results, summary),
+               dir / "tables.md", inputs);
   write_output(hausdorff_area_svg(results), dir / "hausdorff-vs-area.svg", inputs);
   write_output(class_ranking_svg(results, summary.area_classes), dir / "ranks-by-area.svg", inputs);
   write_output(class_ranking_svg(results, surface_classes(summary)), dir / "ranks-by-curvature.svg",
                inputs);
-  write_output(html_report(results, summary, command_line(), command.tie), dir / "report.html",
-               inputs);
+  write_output(html_report(results, summary, made_by, command.tie), dir / "report.html", inputs);
+}
+
+// The runs' summary, the files of --csv and --out, and the summary printed.
+int report_runs(const BenchCommand& command, const BenchResults& results,
+                const std::string& made_by, const std::vector<fs::path>& inputs) {
+  const BenchSummary summary = summarize(results, command.area_classes, command.tie);
+  const std::string table = csv_table(results);
+  if (!command.csv.empty()) write_output(table, command.csv, inputs);
+  if (!command.out.empty()) write_report(command, results, summary, table, made_by, inputs);
+  if (command.json) {
+    print_json(summary_json(results, summary));
+  } else {
+    print_summary(results, summary, command);
+  }
+  return kOk;
+}
+
+// --- Shards: `--shard K/N --out DIR` runs jobs K, K + N, ... of the (hole, method) jobs in
+// hole-major order and writes them to DIR/shard-K-of-N.json with what the merge checks; `--merge
+// DIR...` reads the shards of every DIR and reports as the unsharded run would.
+
+constexpr const char* kShardFormat = "rangefill bench shard 1";
+
+// What decides the jobs and their scores: the shards of one run agree on it.
+json bench_configuration(const BenchCommand& command, const std::vector<fs::path>& files) {
+  json meshes = json::array();
+  for (const fs::path& file : files) meshes.push_back(file.filename().string());
+  return {{"meshes", meshes},
+          {"holes_per_mesh", command.punch.holes},
+          {"seed", command.punch.seed},
+          {"min_radius", command.punch.min_radius},
+          {"max_radius", command.punch.max_radius},
+          {"shapes", command.shapes},
+          {"spread", command.punch.spread},
+          {"inpainters", command.inpainters},
+          {"baselines", command.baselines},
+          {"alpha", command.inpainting.mls_alpha},
+          {"trends", command.trends},
+          {"filler", command.filler},
+          {"fallback", command.fallback},
+          {"area_classes", command.area_classes},
+          {"tie", command.tie}};
+}
+
+json hole_json(const BenchHole& hole) {
+  const PunchedHole& h = hole.hole;
+  return {{"mesh", hole.mesh},
+          {"index", hole.index},
+          {"mean_edge", hole.mean_edge},
+          {"shape", shape_name(h.shape)},
+          {"centre", h.centre},
+          {"radius", h.radius},
+          {"length", h.length},
+          {"area", h.area},
+          {"bending", h.bending},
+          {"curvature", curvature_name(h.curvature)},
+          {"sharp_feature", h.sharp_feature}};
+}
+
+BenchHole hole_from_json(const json& j) {
+  BenchHole hole{j.at("mesh"), j.at("index"), j.at("mean_edge"), {}};
+  PunchedHole& h = hole.hole;
+  h.shape = shape_from_name(j.at("shape"));
+  h.centre = j.at("centre");
+  h.radius = j.at("radius");
+  h.length = j.at("length");
+  h.area = j.at("area");
+  h.bending = j.at("bending");
+  for (CurvatureClass c : {CurvatureClass::low, CurvatureClass::medium, CurvatureClass::high}) {
+    if (curvature_name(c) == j.at("curvature")) h.curvature = c;
+  }
+  h.sharp_feature = j.at("sharp_feature");
+  return hole;
+}
+
+std::string shard_file_name(std::pair<int, int> shard) {
+  return "shard-" + std::to_string(shard.first) + "-of-" + std::to_string(shard.second) + ".json";
+}
+
+void write_shard(const BenchCommand& command, const BenchResults& results,
+                 const std::vector<fs::path>& files, std::pair<int, int> shard,
+                 const std::vector<int>& jobs, const std::vector<ChildResult>& children) {
+  json holes = json::array(), runs = json::object();
+  for (const BenchHole& hole : results.holes) holes.push_back(hole_json(hole));
+  for (size_t i = 0; i < jobs.size(); ++i) runs[std::to_string(jobs[i])] = job_entry(children[i]);
+  const json document = {{"format", kShardFormat},
+                         {"shard", {shard.first, shard.second}},
+                         {"command", command_line()},
+                         {"configuration", bench_configuration(command, files)},
+                         {"methods", results.methods},
+                         {"holes", holes},
+                         {"runs", runs}};
+  fs::create_directories(command.out);
+  write_output(document.dump() + "\n", fs::path(command.out) / shard_file_name(shard), files);
+  std::printf("shard %d/%d: %zu of %zu jobs (%zu holes × %zu methods) written to %s\n", shard.first,
+              shard.second, jobs.size(), results.holes.size() * results.methods.size(),
+              results.holes.size(), results.methods.size(),
+              (fs::path(command.out) / shard_file_name(shard)).c_str());
+}
+
+// The shard files of `directories`, parsed, in name order within each.
+std::vector<std::pair<fs::path, json>> read_shards(const std::vector<std::string>& directories) {
+  std::vector<std::pair<fs::path, json>> shards;
+  for (const std::string& directory : directories) {
+    if (!fs::is_directory(directory)) throw IoError(directory + ": not a directory");
+    std::vector<fs::path> files;
+    for (const fs::directory_entry& entry : fs::directory_iterator(directory)) {
+      const std::string name = entry.path().filename().string();
+      if (name.rfind("shard-", 0) == 0 && entry.path().extension() == ".json") {
+        files.push_back(entry.path());
+      }
+    }
+    std::sort(files.begin(), files.end());
+    for (const fs::path& file : files) {
+      json document = json::parse(read_file(file), nullptr, false);
+      if (document.is_discarded() || !document.is_object() ||
+          document.value("format", "") != kShardFormat) {
+        throw InvalidInput(file.string() + ": not a shard file of rangefill bench");
+      }
+      shards.emplace_back(file, std::move(document));
+    }
+  }
+  if (shards.empty()) throw InvalidInput("--merge: no shard-*.json file in " + join(directories));
+  return shards;
+}
+
+// --merge: the shards checked (one run, each share once, every job there) and reported.
+int merge_shards(const BenchCommand& command) {
+  const std::vector<std::pair<fs::path, json>> shards = read_shards(command.merge);
+  const json& first = shards.front().second;
+  const int count = first.at("shard")[1];
+  std::vector<int> seen(count, 0);
+  json entries = json::object();
+  for (const auto& [file, shard] : shards) {
+    for (const char* key : {"configuration", "methods", "holes"}) {
+      if (shard.at(key) != first.at(key)) {
+        throw InvalidInput(file.string() + ": from another bench run than " +
+                           shards.front().first.string() + " (its " + key + " differ)");
+      }
+    }
+    const int k = shard.at("shard")[0];
+    if (shard.at("shard")[1] != count || k < 0 || k >= count) {
+      throw InvalidInput(file.string() + ": a shard of " + shard.at("shard")[1].dump() +
+                         ", not of " + std::to_string(count));
+    }
+    if (seen[k]++) throw InvalidInput(file.string() + ": shard " + std::to_string(k) + " again");
+    entries.update(shard.at("runs"));
+  }
+  std::vector<std::string> missing;
+  for (int k = 0; k < count; ++k) {
+    if (!seen[k]) missing.push_back(std::to_string(k));
+  }
+  if (!missing.empty()) {
+    throw InvalidInput("--merge: shards " + join(missing) + " of " + std::to_string(count) +
+                       " are missing");
+  }
+
+  BenchCommand merged = command;
+  const json& configuration = first.at("configuration");
+  merged.punch.holes = configuration.at("holes_per_mesh");
+  merged.punch.seed = configuration.at("seed");
+  merged.area_classes = configuration.at("area_classes");
+  merged.tie = configuration.at("tie");
+  BenchResults results;
+  results.methods = first.at("methods").get<std::vector<std::string>>();
+  for (const json& hole : first.at("holes")) results.holes.push_back(hole_from_json(hole));
+  const size_t method_count = results.methods.size();
+  for (size_t h = 0; h < results.holes.size(); ++h) {
+    results.runs.emplace_back();
+    for (size_t m = 0; m < method_count; ++m) {
+      const std::string job = std::to_string(h * method_count + m);
+      if (!entries.contains(job)) throw InvalidInput("--merge: job " + job + " is in no shard");
+      Mesh patch;
+      results.runs[h].push_back(run_from_entry(entries[job], results.holes[h], patch));
+    }
+  }
+  const std::string made_by = first.at("command").get<std::string>() + " (merged from " +
+                              std::to_string(count) + " shards)";
+  return report_runs(merged, results, made_by, {});
+}
+
+// The arguments that do not go together, before any work.
+void check_bench_arguments(const BenchCommand& command) {
+  if (command.merge.empty() == command.meshes.empty()) {
+    throw UsageError("give --meshes (to run the jobs) or --merge DIR... (to report on shards)");
+  }
+  if (!command.merge.empty() && command.out.empty()) throw UsageError("--merge needs --out DIR");
+  if (!command.merge.empty() && (!command.save.empty() || !command.shard.empty())) {
+    throw UsageError("--merge takes no --save or --shard");
+  }
+  if (!command.shard.empty()) {
+    parse_shard(command.shard);
+    if (command.out.empty()) throw UsageError("--shard needs --out DIR (where its jobs go)");
+    if (!command.save.empty() || !command.csv.empty() || command.json) {
+      throw UsageError(
+          "--shard writes its jobs to --out; --save, --csv and --json go with --merge");
+    }
+  }
 }
 
 int run_bench(const BenchCommand& command) {
+  check_bench_arguments(command);
+  if (!command.merge.empty()) return merge_shards(command);
   const std::vector<BenchmarkMethod> methods = bench_methods(command);
   const std::vector<fs::path> files = mesh_files(command.meshes);
   if (files.empty()) throw UsageError("--meshes: no mesh files found");
@@ -382,29 +588,37 @@ int run_bench(const BenchCommand& command) {
   std::vector<std::pair<int, int>> hole_of;  // per benchmark hole: mesh, hole in it
   const std::vector<Punched> meshes = punch_meshes(command, files, results, hole_of);
 
-  // One child process per hole and method, in that order.
+  // One child process per hole and method, in that order (this shard's share of them).
   const int method_count = static_cast<int>(methods.size());
-  const int jobs = static_cast<int>(results.holes.size()) * method_count;
+  std::vector<int> all_jobs(results.holes.size() * method_count);
+  std::iota(all_jobs.begin(), all_jobs.end(), 0);
+  const std::pair<int, int> shard =
+      command.shard.empty() ? std::pair<int, int>{0, 1} : parse_shard(command.shard);
+  const std::vector<int> jobs = shard_of(all_jobs, shard);
   const bool images = !command.out.empty(), patches = !command.save.empty();
   const bool progress = stderr_is_terminal();
   int finished = 0;
   const std::vector<ChildResult> children = run_in_children(
-      jobs, command.threads, command.timeout,
-      [&](int job) {
-        const auto [m, h] = hole_of[job / method_count];
+      static_cast<int>(jobs.size()), command.threads, command.timeout,
+      [&](int i) {
+        const auto [m, h] = hole_of[jobs[i] / method_count];
         const Punched& mesh = meshes[m];
         return run_json(run_method_on_hole(mesh.original, mesh.punched, h, mesh.loops[h],
-                                           methods[job % method_count], mesh.mean_edge),
+                                           methods[jobs[i] % method_count], mesh.mean_edge),
                         images, patches);
       },
-      [&](int job, const ChildResult&) {
+      [&](int i, const ChildResult&) {
         ++finished;
         if (!progress) return;
-        const BenchHole& hole = results.holes[job / method_count];
-        std::fprintf(stderr, "\r\033[K[%d/%d] %s hole %d: %s", finished, jobs, hole.mesh.c_str(),
-                     hole.index, methods[job % method_count].name.c_str());
+        const BenchHole& hole = results.holes[jobs[i] / method_count];
+        std::fprintf(stderr, "\r\033[K[%d/%zu] %s hole %d: %s", finished, jobs.size(),
+                     hole.mesh.c_str(), hole.index, methods[jobs[i] % method_count].name.c_str());
       });
   if (progress) std::fprintf(stderr, "\r\033[K");
+  if (!command.shard.empty()) {
+    write_shard(command, results, files, shard, jobs, children);
+    return kOk;
+  }
 
   std::vector<std::vector<Mesh>> patch_parts(meshes.size() * method_count);
   for (size_t h = 0; h < results.holes.size(); ++h) {
@@ -412,21 +626,12 @@ int run_bench(const BenchCommand& command) {
     for (int k = 0; k < method_count; ++k) {
       Mesh patch;
       results.runs[h].push_back(
-          run_from_child(children[h * method_count + k], results.holes[h], patch));
+          run_from_entry(job_entry(children[h * method_count + k]), results.holes[h], patch));
       patch_parts[hole_of[h].first * method_count + k].push_back(std::move(patch));
     }
   }
-  const BenchSummary summary = summarize(results, command.area_classes, command.tie);
   if (!command.save.empty()) save_meshes(command, meshes, methods, patch_parts, files);
-  const std::string table = csv_table(results);
-  if (!command.csv.empty()) write_output(table, command.csv, files);
-  if (!command.out.empty()) write_report(command, results, summary, table, files);
-  if (command.json) {
-    print_json(summary_json(results, summary));
-  } else {
-    print_summary(results, summary, command);
-  }
-  return kOk;
+  return report_runs(command, results, command_line(), files);
 }
 
 }  // namespace
@@ -437,7 +642,7 @@ void add_bench_command(CLI::App& app, Runner& runner) {
       "bench",
       "Punch holes into closed meshes, fill them with each back-end and baseline, and "
       "measure (Perez et al., Section X)");
-  sub->add_option("--meshes", command->meshes, "Closed meshes, or directories of them")->required();
+  sub->add_option("--meshes", command->meshes, "Closed meshes, or directories of them");
   sub->add_option("--holes-per-mesh", command->punch.holes, "Holes punched per mesh")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
@@ -494,6 +699,12 @@ void add_bench_command(CLI::App& app, Runner& runner) {
                   "Write each punched mesh, its removed faces (the ground truth) and each "
                   "method's patches here");
   sub->add_flag("--json", command->json, "Print the summary as JSON");
+  sub->add_option("--shard", command->shard,
+                  "K/N: run only jobs K, K+N, K+2N, ... of the (hole, method) jobs (0-based) and "
+                  "write them to --out DIR as shard-K-of-N.json, for job arrays");
+  sub->add_option("--merge", command->merge,
+                  "Report on the shards in these directories (written by --shard) as the "
+                  "unsharded run would, into --out DIR");
   sub->callback([command, &runner] { runner = [command] { return run_bench(*command); }; });
 }
 

@@ -184,4 +184,24 @@ void print_json(const nlohmann::json& value) {
   std::cout << value.dump(2) << "\n";
 }
 
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
+  std::error_code error;
+  return std::filesystem::equivalent(a, b, error);
+}
+
+std::pair<int, int> parse_shard(const std::string& text) {
+  const size_t slash = text.find('/');
+  try {
+    size_t used_k = 0, used_n = 0;
+    const int k = std::stoi(text.substr(0, slash), &used_k);
+    const int n = std::stoi(text.substr(slash + 1), &used_n);
+    if (slash != std::string::npos && used_k == slash && used_n == text.size() - slash - 1 &&
+        n >= 1 && k >= 0 && k < n) {
+      return {k, n};
+    }
+  } catch (const std::exception&) {
+  }
+  throw UsageError("--shard: '" + text + "' is not K/N with 0 <= K < N");
+}
+
 }  // namespace rangefill::cli

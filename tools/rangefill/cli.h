@@ -108,4 +108,18 @@ bool stderr_is_terminal();
 /// Prints JSON to stdout, two-space indented.
 void print_json(const nlohmann::json& value);
 
+/// Whether a and b name the same existing file.
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
+
+/// --shard "K/N" (0 <= K < N) as {K, N}; throws UsageError otherwise.
+std::pair<int, int> parse_shard(const std::string& text);
+
+/// The items K, K + N, K + 2N, ... of `all`: a shard's share of a job array.
+template <typename Item>
+std::vector<Item> shard_of(const std::vector<Item>& all, std::pair<int, int> shard) {
+  std::vector<Item> share;
+  for (size_t i = shard.first; i < all.size(); i += shard.second) share.push_back(all[i]);
+  return share;
+}
+
 }  // namespace rangefill::cli

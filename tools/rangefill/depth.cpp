@@ -74,11 +74,6 @@ FileFill fill_file(const fs::path& input, const fs::path& mask, const fs::path& 
   return result;
 }
 
-bool same_file(const fs::path& a, const fs::path& b) {
-  std::error_code error;
-  return fs::equivalent(a, b, error);
-}
-
 int run_single(const DepthCommand& command) {
   if (command.output.empty()) throw UsageError("-o OUT is required with an input file");
   if (!is_depth_image_path(command.output)) {
@@ -119,22 +114,6 @@ int run_single(const DepthCommand& command) {
   return kOk;
 }
 
-// "K/N" with 0 <= K < N.
-std::pair<int, int> parse_shard(const std::string& text) {
-  const size_t slash = text.find('/');
-  try {
-    size_t used_k = 0, used_n = 0;
-    const int k = std::stoi(text.substr(0, slash), &used_k);
-    const int n = std::stoi(text.substr(slash + 1), &used_n);
-    if (slash != std::string::npos && used_k == slash && used_n == text.size() - slash - 1 &&
-        n >= 1 && k >= 0 && k < n) {
-      return {k, n};
-    }
-  } catch (const std::exception&) {
-  }
-  throw UsageError("--shard: '" + text + "' is not K/N with 0 <= K < N");
-}
-
 struct FileOutcome {
   bool written = false;
   std::string error;
@@ -162,8 +141,7 @@ int run_batch(const DepthCommand& command) {
 
   // Every depth image of the directory in name order; this shard takes every shards-th from shard.
   const std::vector<fs::path> all = files_from_arguments({command.batch}, is_depth_image_path);
-  std::vector<fs::path> files;
-  for (size_t i = shard; i < all.size(); i += shards) files.push_back(all[i]);
+  const std::vector<fs::path> files = shard_of(all, {shard, shards});
 
   std::vector<FileOutcome> outcomes(files.size());
   std::mutex progress_mutex;

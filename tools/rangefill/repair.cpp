@@ -1,4 +1,4 @@
-// rangefill repair IN -o OUT: close the holes of a mesh by range-image inpainting.
+// rangefill repair IN -o OUT, or --batch DIR --out-dir DIR: close the holes of meshes.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 // Defaults are RepairOptions' own: the library and the command repair alike.
 struct RepairCommand {
   RepairOptions options;
-  std::string input, output, report, debug_dir, holes = "all";
+  std::string input, output, report, debug_dir, holes = "all", batch, out_dir, shard = "0/1";
   std::string trend = trend_name(options.trend);
   std::string filler = filler_name(kDefaultFiller);  // RepairOptions' strategies: the chain of
   std::string fallback = kDefaultFallbacks;          // this filler and these fallbacks
@@ -182,7 +182,16 @@ Mesh load_input(const RepairCommand& command) {
   return mesh;
 }
 
-int run_repair(RepairCommand& command) {
+// What repairing one file gave: the result, its report and the exit code it calls for.
+struct FileRepair {
+  RepairResult result;
+  nlohmann::json report;
+  int exit_code = kOk;
+};
+
+// Repairs command.input into command.output (and --report), with progress per hole on a terminal
+// and the input's defects and border loops said on stderr.
+FileRepair repair_file(RepairCommand& command) {
   check_arguments(command);
   const Mesh mesh = load_input(command);
 
@@ -205,11 +214,14 @@ int run_repair(RepairCommand& command) {
   }
 
   const auto start = std::chrono::steady_clock::now();
-  const RepairResult result =
-      naming_the_input(command.input, [&] { return repair(mesh, command.options); });
+  FileRepair repaired;
+  repaired.result = naming_the_input(command.input, [&] { return repair(mesh, command.options); });
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  command.options.on_hole = nullptr;
+  command.options.on_images = nullptr;
   if (progress && done > 0) std::fprintf(stderr, "\r\033[K");
+  const RepairResult& result = repaired.result;
 
   WriteOptions write_options;
   if (command.ascii) write_options.encoding = Encoding::ascii;
@@ -223,26 +235,108 @@ int run_repair(RepairCommand& command) {
               << "; holes that touch them are left open\n";
   }
   print_border_note(result, command.options.border_share);
-  const nlohmann::json report = report_json(command, result, seconds);
+  repaired.report = report_json(command, result, seconds);
   if (!command.report.empty()) {
     const OutputGuard guard;
-    write_file_atomically(report.dump(2) + "\n", command.report);
+    write_file_atomically(repaired.report.dump(2) + "\n", command.report);
   }
   const int failed = result.open_count(OpenReason::failed);
-  if (command.json) {
-    print_json(report);
-  } else {
-    print_summary(result);
-    std::printf("%s; %.3f s; wrote %s\n",
-                loops_line(result, !command.options.holes.empty()).c_str(), seconds,
-                command.output.c_str());
-  }
   if (failed > 0) {
     std::cerr << "rangefill: " << command.output
               << ": partial repair, loops left open that were to be filled: " << failed << "\n";
-    return kPartial;
+    repaired.exit_code = kPartial;
   }
-  return kOk;
+  return repaired;
+}
+
+int run_single(RepairCommand& command) {
+  const FileRepair repaired = repair_file(command);
+  if (command.json) {
+    print_json(repaired.report);
+  } else {
+    print_summary(repaired.result);
+    std::printf("%s; %.3f s; wrote %s\n",
+                loops_line(repaired.result, !command.options.holes.empty()).c_str(),
+                repaired.report["seconds"].get<double>(), command.output.c_str());
+  }
+  return repaired.exit_code;
+}
+
+// --batch: every mesh of the directory in name order (this shard's share) into --out-dir, one
+// after the other (the holes of each in parallel); a file that cannot be repaired is skipped and
+// said, and the exit code is then 5, as it is when a repair is partial.
+int run_batch(const RepairCommand& command) {
+  if (!command.input.empty() || !command.output.empty() || !command.report.empty() ||
+      !command.debug_dir.empty() || command.in_place) {
+    throw UsageError(
+        "--batch takes no input file, -o, --report, --debug-dir or --in-place (outputs go to "
+        "--out-dir, under the inputs' names)");
+  }
+  if (command.out_dir.empty()) throw UsageError("--batch needs --out-dir");
+  const std::pair<int, int> shard = parse_shard(command.shard);
+  if (!fs::is_directory(command.batch)) throw IoError(command.batch + ": not a directory");
+  fs::create_directories(command.out_dir);
+  if (same_file(command.out_dir, command.batch)) {
+    throw UsageError("--out-dir " + command.out_dir +
+                     " is the input directory: the outputs would overwrite the inputs");
+  }
+  const std::vector<fs::path> all = mesh_files({command.batch});
+  const std::vector<fs::path> files = shard_of(all, shard);
+  const bool progress = stderr_is_terminal();
+  nlohmann::json reports = nlohmann::json::array();
+  int skipped = 0, partial = 0;
+  const auto start = std::chrono::steady_clock::now();
+  for (size_t i = 0; i < files.size(); ++i) {
+    if (progress) {
+      std::fprintf(stderr, "\r\033[K[%zu/%zu] %s\n", i + 1, files.size(),
+                   files[i].filename().c_str());
+    }
+    RepairCommand file_command = command;
+    file_command.input = files[i].string();
+    file_command.output = (fs::path(command.out_dir) / files[i].filename()).string();
+    nlohmann::json entry = {{"input", file_command.input}};
+    try {
+      const FileRepair repaired = repair_file(file_command);
+      partial += repaired.exit_code == kPartial;
+      entry = repaired.report;
+      entry["written"] = true;
+      if (!command.json) {
+        std::printf("%s: %s; %.3f s\n", file_command.input.c_str(),
+                    loops_line(repaired.result, !command.options.holes.empty()).c_str(),
+                    repaired.report["seconds"].get<double>());
+      }
+    } catch (const UsageError&) {
+      throw;  // the same for every file
+    } catch (const std::exception& error) {
+      ++skipped;
+      std::cerr << "rangefill: skipped " << error.what() << "\n";
+      entry["written"] = false;
+      entry["error"] = error.what();
+    }
+    reports.push_back(entry);
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (command.json) {
+    print_json(reports);
+  } else {
+    std::printf(
+        "%zu files (shard %d/%d of %zu), %zu written to %s, %d skipped, %d partial; %.1f s\n",
+        files.size(), shard.first, shard.second, all.size(), files.size() - skipped,
+        command.out_dir.c_str(), skipped, partial, seconds);
+  }
+  return skipped + partial > 0 ? kPartial : kOk;
+}
+
+int run_repair(RepairCommand& command) {
+  if (command.batch.empty() == command.input.empty()) {
+    throw UsageError("give an input file (with -o OUT) or --batch DIR (with --out-dir DIR)");
+  }
+  if (command.batch.empty()) {
+    if (command.output.empty()) throw UsageError("-o OUT is needed with an input file");
+    return run_single(command);
+  }
+  return run_batch(command);
 }
 
 }  // namespace
@@ -251,9 +345,14 @@ void add_repair_command(CLI::App& app, Runner& runner) {
   auto command = std::make_shared<RepairCommand>();
   RepairOptions& options = command->options;
   CLI::App* sub = app.add_subcommand("repair", "Fill the holes of a mesh (Pérez et al. pipeline)");
-  sub->add_option("input", command->input, "Mesh with holes (.ply, .obj, .off, .stl)")->required();
-  sub->add_option("-o,--output", command->output, "Repaired mesh (format from the extension)")
-      ->required();
+  sub->add_option("input", command->input, "Mesh with holes (.ply, .obj, .off, .stl)");
+  sub->add_option("-o,--output", command->output, "Repaired mesh (format from the extension)");
+  sub->add_option("--batch", command->batch, "Repair every mesh of this directory");
+  sub->add_option("--out-dir", command->out_dir, "Where --batch writes (same file names)");
+  sub->add_option("--shard", command->shard,
+                  "K/N: repair only files K, K+N, K+2N, ... of the directory in name order "
+                  "(0-based), for job arrays")
+      ->capture_default_str();
   sub->add_option("--filler", command->filler,
                   "plane: range images (Pérez et al.); front: advancing front (Tekumalla & Cohen); "
                   "fairing: Liepa's patch refined and faired (CGAL)")
