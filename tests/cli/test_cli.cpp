@@ -494,9 +494,33 @@ TEST(Cli, BenchComparesMethodsAndWritesItsReport) {
     EXPECT_NEAR(shares, 1, 1e-12) << method;
   }
   EXPECT_GT(summary["methods"]["cgal-triangulate"]["edge_ratio_sd"], 0);
+  // The statistics: each median inside its bootstrap interval; the best median's method, tested
+  // against every other on the same holes (itself: no pair); the holes every back-end filled
+  // alike, counted and marked.
+  std::string best;
+  for (const std::string method : {"harmonic", "ns", "cgal-triangulate"}) {
+    const nlohmann::json& figures = summary["methods"][method];
+    EXPECT_LE(figures["hausdorff_median_ci95"][0], figures["hausdorff_median"]) << method;
+    EXPECT_GE(figures["hausdorff_median_ci95"][1], figures["hausdorff_median"]) << method;
+    EXPECT_EQ(figures["versus_best"]["test"], "Wilcoxon signed-rank, two-sided");
+    if (best.empty() ||
+        figures["hausdorff_median"] < summary["methods"][best]["hausdorff_median"].get<double>()) {
+      best = method;
+    }
+  }
+  EXPECT_EQ(summary["best"], best);
+  EXPECT_EQ(summary["methods"][best]["versus_best"]["pairs"], 0);
+  EXPECT_TRUE(summary["methods"][best]["versus_best"]["p"].is_null());
+  int alike = 0;
+  for (const nlohmann::json& hole : summary["holes"])
+    alike += hole["alike_for_every_backend"].get<bool>();
+  EXPECT_EQ(summary["holes_alike_for_every_backend"], alike);
+  EXPECT_EQ(summary["backends_among_themselves"]["holes"], 3 - alike);
   const std::string csv = slurp(dir / "one" / "holes.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 3 * 3);
   EXPECT_NE(slurp(dir / "one" / "tables.md").find("(Table 3)"), std::string::npos);
+  EXPECT_NE(slurp(dir / "one" / "tables.md").find("The back-ends ranked among themselves"),
+            std::string::npos);
   const std::string html = slurp(dir / "one" / "report.html");
   EXPECT_NE(html.find("<svg"), std::string::npos);
   size_t images = 0;

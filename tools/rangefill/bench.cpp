@@ -237,12 +237,16 @@ void print_summary(const BenchResults& results, const BenchSummary& summary,
     const MethodSummary& s = summary.methods[m];
     char edge[32];
     std::snprintf(edge, sizeof edge, "%.2f ± %.2f", s.edge_ratio.mean, s.edge_ratio.sd);
-    std::printf("%-18s %3d/%-3zu %3d/%-3d %8.3f %8.3f %8.3f %13s %6.2f %6d %8.4f\n",
+    char pcc[16] = "—";  // fewer than two holes, or H or the area constant
+    if (!std::isnan(s.pearson)) std::snprintf(pcc, sizeof pcc, "%.2f", s.pearson);
+    std::printf("%-18s %3d/%-3zu %3d/%-3d %8.3f %8.3f %8.3f %13s %6s %6d %8.4f\n",
                 results.methods[m].c_str(), s.filled, results.holes.size(), s.closed_meshes,
                 summary.meshes, s.hausdorff_median, s.hausdorff_max, s.mean_distance_median, edge,
-                s.pearson, s.self_intersections, s.seconds_median);
+                pcc, s.self_intersections, s.seconds_median);
   }
-  std::printf("\nplaces by H (Table 3), %%:\n%-18s", "method");
+  std::printf(
+      "\nplaces by H (Table 3) on %zu holes (every back-end filled %d of them alike), %%:\n%-18s",
+      results.holes.size(), summary.alike_holes, "method");
   for (size_t p = 1; p <= results.methods.size(); ++p) std::printf(" %6zu", p);
   std::printf("\n");
   for (size_t m = 0; m < results.methods.size(); ++m) {
@@ -252,10 +256,21 @@ void print_summary(const BenchResults& results, const BenchSummary& summary,
   }
 }
 
-// The methods to compare: every back-end with every trend, then the baselines.
-std::vector<BenchmarkMethod> bench_methods(const BenchCommand& command) {
+// The back-ends to run: --inpainters, or all of them when neither they nor baselines are named.
+std::vector<std::string> bench_inpainters(const BenchCommand& command) {
   std::vector<std::string> inpainters = split_list(command.inpainters);
   if (inpainters.empty() && command.baselines.empty()) inpainters = inpainter_names();
+  return inpainters;
+}
+
+// How many of bench_methods are back-ends (they come first).
+int backend_count(const BenchCommand& command) {
+  return static_cast<int>(bench_inpainters(command).size() * split_list(command.trends).size());
+}
+
+// The methods to compare: every back-end with every trend, then the baselines.
+std::vector<BenchmarkMethod> bench_methods(const BenchCommand& command) {
+  const std::vector<std::string> inpainters = bench_inpainters(command);
   for (const std::string& name : inpainters) check_inpainter(name, "--inpainters");
   std::vector<TrendKind> trends;
   for (const std::string& name : split_list(command.trends))
@@ -467,6 +482,7 @@ void write_shard(const BenchCommand& command, const BenchResults& results,
                          {"command", command_line()},
                          {"configuration", bench_configuration(command, files)},
                          {"methods", results.methods},
+                         {"backends", results.backends},
                          {"holes", holes},
                          {"runs", runs}};
   fs::create_directories(command.out);
@@ -511,7 +527,7 @@ int merge_shards(const BenchCommand& command) {
   std::vector<int> seen(count, 0);
   json entries = json::object();
   for (const auto& [file, shard] : shards) {
-    for (const char* key : {"configuration", "methods", "holes"}) {
+    for (const char* key : {"configuration", "methods", "backends", "holes"}) {
       if (shard.at(key) != first.at(key)) {
         throw InvalidInput(file.string() + ": from another bench run than " +
                            shards.front().first.string() + " (its " + key + " differ)");
@@ -542,6 +558,7 @@ int merge_shards(const BenchCommand& command) {
   merged.tie = configuration.at("tie");
   BenchResults results;
   results.methods = first.at("methods").get<std::vector<std::string>>();
+  results.backends = first.at("backends");
   for (const json& hole : first.at("holes")) results.holes.push_back(hole_from_json(hole));
   const size_t method_count = results.methods.size();
   for (size_t h = 0; h < results.holes.size(); ++h) {
@@ -585,6 +602,7 @@ int run_bench(const BenchCommand& command) {
   if (files.empty()) throw UsageError("--meshes: no mesh files found");
   BenchResults results;
   for (const BenchmarkMethod& method : methods) results.methods.push_back(method.name);
+  results.backends = backend_count(command);
   std::vector<std::pair<int, int>> hole_of;  // per benchmark hole: mesh, hole in it
   const std::vector<Punched> meshes = punch_meshes(command, files, results, hole_of);
 

@@ -56,6 +56,32 @@ double hausdorff_in_dm(const BenchResults& results, size_t hole, size_t method) 
   return run.score.filled ? run.score.distance.hausdorff / results.holes[hole].mean_edge : kNan;
 }
 
+// Whether two or more back-ends all filled hole h, by the same strategy, with patches at the same
+// distance from the truth (the same patch: the strategy did not use the back-end).
+bool filled_alike(const BenchResults& results, size_t h) {
+  if (results.backends < 2) return false;
+  const BenchRun& first = results.runs[h][0];
+  for (int m = 0; m < results.backends; ++m) {
+    const BenchRun& run = results.runs[h][m];
+    if (!run.score.filled || run.score.method != first.score.method ||
+        run.score.distance.hausdorff != first.score.distance.hausdorff ||
+        run.score.distance.mean != first.score.distance.mean) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// H / d_m of each hole for method m, +inf where it did not close the hole.
+std::vector<double> hausdorff_or_failure(const BenchResults& results, size_t m) {
+  std::vector<double> values;
+  for (size_t h = 0; h < results.holes.size(); ++h) {
+    const double value = hausdorff_in_dm(results, h, m);
+    values.push_back(std::isnan(value) ? std::numeric_limits<double>::infinity() : value);
+  }
+  return values;
+}
+
 ClassRanking ranking(const std::string& name, const std::string& label, std::vector<int> holes,
                      const std::vector<std::vector<int>>& positions, size_t methods) {
   ClassRanking ranked{name, label, std::move(holes), {}};
@@ -75,10 +101,32 @@ void add_share_rows(const BenchResults& results, const ClassRanking& ranking,
 }
 
 // Holes of a class that some method filled (those the ranking counts).
-int ranked_holes(const BenchSummary& summary, const ClassRanking& ranking) {
+int ranked_holes(const std::vector<std::vector<int>>& positions, const ClassRanking& ranking) {
   int count = 0;
-  for (int h : ranking.holes) count += !summary.positions[h].empty();
+  for (int h : ranking.holes) count += !positions[h].empty();
   return count;
+}
+
+int ranked_holes(const BenchSummary& summary, const ClassRanking& ranking) {
+  return ranked_holes(summary.positions, ranking);
+}
+
+// Table 3's layout: per method its share of first places with their bootstrap interval, then the
+// share of each position.
+Table ranking_table(const std::string& title, const std::vector<std::string>& methods,
+                    const ClassRanking& ranking, const std::vector<Interval>& first_intervals) {
+  Table table{title, {"method", "1st: 95 % CI"}, {}};
+  for (const std::string& name : position_names(methods.size())) table.header.push_back(name);
+  for (size_t m = 0; m < methods.size(); ++m) {
+    const Interval& interval = first_intervals[m];
+    std::vector<std::string> row = {methods[m], std::isnan(interval.low)
+                                                    ? "—"
+                                                    : fixed(100 * interval.low, 0) + "–" +
+                                                          fixed(100 * interval.high, 0) + " %"};
+    for (double share : ranking.shares[m]) row.push_back(percent(share));
+    table.rows.push_back(std::move(row));
+  }
+  return table;
 }
 
 // Table 5 (or its curvature counterpart): class, holes, method, shares of each position.
@@ -125,30 +173,51 @@ std::vector<Table> tables(const BenchResults& results, const BenchSummary& summa
   std::vector<Table> all;
   const size_t n = results.holes.size();
   Table overview{
-      "Per method (" + std::to_string(summary.meshes) + " meshes, " + std::to_string(n) + " holes)",
-      {"method", "holes closed", "meshes closed", "H median / d_m", "H max / d_m",
-       "mean dist / d_m", "r = edge / d_m", "self-intersections", "s / hole (median)"},
+      "Per method (" + std::to_string(summary.meshes) + " meshes, " + std::to_string(n) +
+          " holes; medians over the holes each method closed, with bootstrap 95 % intervals; "
+          "Wilcoxon's signed-rank test of H against the best median's method on every hole, a "
+          "hole left open counting as the worst)",
+      {"method", "holes closed", "meshes closed", "H median / d_m [95 % CI]", "H max / d_m",
+       "mean dist / d_m", "r = edge / d_m", "self-intersections", "vs best: p (pairs)",
+       "s / hole (median)"},
       {}};
   for (size_t m = 0; m < results.methods.size(); ++m) {
     const MethodSummary& s = summary.methods[m];
+    const std::string test = static_cast<int>(m) == summary.best
+                                 ? "best"
+                                 : (std::isnan(s.versus_best.p)
+                                        ? std::string("—")
+                                        : fixed(s.versus_best.p, s.versus_best.p < 0.001 ? 5 : 3)) +
+                                       " (" + std::to_string(s.versus_best.pairs) + ")";
     overview.rows.push_back(
         {results.methods[m], std::to_string(s.filled) + " / " + std::to_string(n),
          std::to_string(s.closed_meshes) + " / " + std::to_string(summary.meshes),
-         fixed(s.hausdorff_median), fixed(s.hausdorff_max), fixed(s.mean_distance_median),
+         fixed(s.hausdorff_median) + " [" + fixed(s.hausdorff_median_interval.low) + ", " +
+             fixed(s.hausdorff_median_interval.high) + "]",
+         fixed(s.hausdorff_max), fixed(s.mean_distance_median),
          fixed(s.edge_ratio.mean) + " ± " + fixed(s.edge_ratio.sd),
-         std::to_string(s.self_intersections), fixed(s.seconds_median, 3)});
+         std::to_string(s.self_intersections), test, fixed(s.seconds_median, 3)});
   }
   all.push_back(std::move(overview));
 
-  Table positions{"Effectiveness ranking by H, " +
-                      std::to_string(ranked_holes(summary, summary.overall)) +
-                      " holes some method closed (Table 3)",
-                  {"method"},
-                  {}};
-  for (const std::string& name : position_names(results.methods.size()))
-    positions.header.push_back(name);
-  add_share_rows(results, summary.overall, {}, positions);
-  all.push_back(std::move(positions));
+  const std::string alike_note =
+      summary.alike_holes > 0 ? "; every back-end filled " + std::to_string(summary.alike_holes) +
+                                    " of them alike (ties among the back-ends)"
+                              : "";
+  all.push_back(ranking_table("Effectiveness ranking by H, " +
+                                  std::to_string(ranked_holes(summary, summary.overall)) +
+                                  " holes some method closed" + alike_note + " (Table 3)",
+                              results.methods, summary.overall, summary.first_share_intervals));
+  if (results.backends >= 2) {
+    const std::vector<std::string> backends(results.methods.begin(),
+                                            results.methods.begin() + results.backends);
+    all.push_back(ranking_table(
+        "The back-ends ranked among themselves, on the " +
+            std::to_string(ranked_holes(summary.backend_positions, summary.backends)) +
+            " holes where their fills differ (" + std::to_string(summary.alike_holes) +
+            " filled alike by every back-end left out)",
+        backends, summary.backends, summary.backend_first_share_intervals));
+  }
 
   Table correlation{
       "Pearson correlation of H / d_m with area / d_m² (Table 4) and edge ratio "
@@ -166,9 +235,8 @@ std::vector<Table> tables(const BenchResults& results, const BenchSummary& summa
   all.push_back(first_place_table("First places by hole-area class (area / d_m², holes ranked)",
                                   results, summary, summary.area_classes));
   all.push_back(
-      first_place_table("First places by curvature class and sharp feature (holes "
-                        "ranked)",
-                        results, summary, surface_classes(summary)));
+      first_place_table("First places by curvature class and sharp feature (holes ranked)", results,
+                        summary, surface_classes(summary)));
   all.push_back(class_table("Effectiveness ranking by hole-area class (Table 5)", "area / d_m²",
                             results, summary, summary.area_classes));
   all.push_back(class_table("Effectiveness ranking by curvature class", "curvature", results,
@@ -180,7 +248,7 @@ std::vector<Table> tables(const BenchResults& results, const BenchSummary& summa
       "H / d_m of every hole and the strategy that filled it (Tables 1 and 2; open: not "
       "closed)",
       {"mesh", "hole", "shape", "radius / d_m", "length / d_m", "area / d_m²", "bending",
-       "curvature", "sharp"},
+       "curvature", "sharp", "back-ends alike"},
       {}};
   for (const std::string& method : results.methods) holes.header.push_back(method);
   for (size_t h = 0; h < n; ++h) {
@@ -193,7 +261,8 @@ std::vector<Table> tables(const BenchResults& results, const BenchSummary& summa
                                     fixed(area_in_dm2(hole), 0),
                                     fixed(hole.hole.bending),
                                     curvature_name(hole.hole.curvature),
-                                    hole.hole.sharp_feature ? "yes" : "no"};
+                                    hole.hole.sharp_feature ? "yes" : "no",
+                                    summary.alike[h] ? "yes" : "no"};
     for (size_t m = 0; m < results.methods.size(); ++m) {
       const double value = hausdorff_in_dm(results, h, m);
       row.push_back(
@@ -275,6 +344,28 @@ std::string hole_section(const BenchResults& results, size_t h) {
   return html.str();
 }
 
+// A number, or null for NaN (JSON has no NaN).
+nlohmann::json number_or_null(double value) {
+  return std::isnan(value) ? nlohmann::json(nullptr) : nlohmann::json(value);
+}
+
+nlohmann::json interval_json(const Interval& interval) {
+  return {number_or_null(interval.low), number_or_null(interval.high)};
+}
+
+// The back-ends' ranking among themselves (null with fewer than two).
+nlohmann::json backends_json(const BenchResults& results, const BenchSummary& summary) {
+  if (results.backends < 2) return nullptr;
+  nlohmann::json shares = nlohmann::json::object(), intervals = nlohmann::json::object();
+  for (int m = 0; m < results.backends; ++m) {
+    shares[results.methods[m]] = summary.backends.shares[m];
+    intervals[results.methods[m]] = interval_json(summary.backend_first_share_intervals[m]);
+  }
+  return {{"holes", ranked_holes(summary.backend_positions, summary.backends)},
+          {"shares", shares},
+          {"first_share_ci95", intervals}};
+}
+
 nlohmann::json shares_json(const BenchResults& results, const ClassRanking& ranking) {
   nlohmann::json shares = nlohmann::json::object();
   for (size_t m = 0; m < results.methods.size(); ++m)
@@ -290,11 +381,29 @@ BenchSummary summarize(const BenchResults& results, int area_classes, double tie
   std::vector<std::vector<double>> errors(n, std::vector<double>(methods));
   for (size_t h = 0; h < n; ++h) {
     for (size_t m = 0; m < methods; ++m) errors[h][m] = hausdorff_in_dm(results, h, m);
+    summary.alike.push_back(filled_alike(results, h));
+    summary.alike_holes += summary.alike.back();
   }
   summary.positions = rank_positions(errors, tie);
-  std::vector<int> all(n);
-  for (size_t h = 0; h < n; ++h) all[h] = static_cast<int>(h);
+  std::vector<int> all(n), different;
+  for (size_t h = 0; h < n; ++h) {
+    all[h] = static_cast<int>(h);
+    if (!summary.alike[h]) different.push_back(static_cast<int>(h));
+  }
   summary.overall = ranking("all", "all", all, summary.positions, methods);
+  summary.first_share_intervals =
+      bootstrap_share_intervals(summary.positions, all, static_cast<int>(methods));
+  if (results.backends >= 2) {
+    std::vector<std::vector<double>> backend_errors;
+    for (const std::vector<double>& row : errors) {
+      backend_errors.emplace_back(row.begin(), row.begin() + results.backends);
+    }
+    summary.backend_positions = rank_positions(backend_errors, tie);
+    summary.backends =
+        ranking("back-ends", "back-ends", different, summary.backend_positions, results.backends);
+    summary.backend_first_share_intervals =
+        bootstrap_share_intervals(summary.backend_positions, different, results.backends);
+  }
 
   std::map<std::string, std::vector<size_t>> holes_of_mesh;
   for (size_t h = 0; h < n; ++h) holes_of_mesh[results.holes[h].mesh].push_back(h);
@@ -323,6 +432,7 @@ BenchSummary summarize(const BenchResults& results, int area_classes, double tie
       s.closed_meshes += closed;
     }
     s.hausdorff_median = median(hausdorff);
+    s.hausdorff_median_interval = bootstrap_median_interval(hausdorff);
     s.hausdorff_max = hausdorff.empty() ? 0 : *std::max_element(hausdorff.begin(), hausdorff.end());
     s.mean_distance_median = median(mean_distance);
     s.seconds_median = median(seconds);
@@ -331,36 +441,50 @@ BenchSummary summarize(const BenchResults& results, int area_classes, double tie
     s.pearson_holes = static_cast<int>(hausdorff.size());
     summary.methods.push_back(s);
   }
+  for (size_t m = 1; m < methods; ++m) {
+    const MethodSummary &candidate = summary.methods[m], &best = summary.methods[summary.best];
+    if (candidate.filled > 0 &&
+        (best.filled == 0 || candidate.hausdorff_median < best.hausdorff_median)) {
+      summary.best = static_cast<int>(m);
+    }
+  }
+  const std::vector<double> best_errors = hausdorff_or_failure(results, summary.best);
+  for (size_t m = 0; m < methods; ++m) {
+    summary.methods[m].versus_best =
+        wilcoxon_signed_rank(hausdorff_or_failure(results, m), best_errors);
+  }
 
+  auto members_where = [&](auto member) {
+    std::vector<int> members;
+    for (size_t h = 0; h < n; ++h) {
+      if (member(h)) members.push_back(static_cast<int>(h));
+    }
+    return members;
+  };
   std::vector<double> areas;
   for (const BenchHole& hole : results.holes) areas.push_back(area_in_dm2(hole));
   const EqualWidthClasses classes = equal_width_classes(areas, area_classes);
   for (int c = 0; c < area_classes; ++c) {
-    std::vector<int> members;
-    for (size_t h = 0; h < n; ++h) {
-      if (classes.of_value[h] == c) members.push_back(static_cast<int>(h));
-    }
-    summary.area_classes.push_back(
-        ranking(fixed(classes.edges[c], 0) + "–" + fixed(classes.edges[c + 1], 0),
-                std::to_string(c + 1), members, summary.positions, methods));
+    ClassRanking ranked = ranking(fixed(classes.edges[c], 0) + "–" + fixed(classes.edges[c + 1], 0),
+                                  fixed(classes.edges[c], 0) + "–" + fixed(classes.edges[c + 1], 0),
+                                  members_where([&](size_t h) { return classes.of_value[h] == c; }),
+                                  summary.positions, methods);
+    if (ranked_holes(summary, ranked) > 0) summary.area_classes.push_back(std::move(ranked));
   }
   for (CurvatureClass curvature :
        {CurvatureClass::low, CurvatureClass::medium, CurvatureClass::high}) {
-    std::vector<int> members;
-    for (size_t h = 0; h < n; ++h) {
-      if (results.holes[h].hole.curvature == curvature) members.push_back(static_cast<int>(h));
-    }
-    summary.curvature_classes.push_back(ranking(
-        curvature_name(curvature), curvature_name(curvature), members, summary.positions, methods));
+    ClassRanking ranked = ranking(
+        curvature_name(curvature), curvature_name(curvature),
+        members_where([&](size_t h) { return results.holes[h].hole.curvature == curvature; }),
+        summary.positions, methods);
+    if (ranked_holes(summary, ranked) > 0) summary.curvature_classes.push_back(std::move(ranked));
   }
   for (bool sharp : {true, false}) {
-    std::vector<int> members;
-    for (size_t h = 0; h < n; ++h) {
-      if (results.holes[h].hole.sharp_feature == sharp) members.push_back(static_cast<int>(h));
-    }
-    summary.feature_classes.push_back(ranking(sharp ? "sharp feature" : "no sharp feature",
-                                              sharp ? "sharp" : "no sharp", members,
-                                              summary.positions, methods));
+    ClassRanking ranked = ranking(
+        sharp ? "sharp feature" : "no sharp feature", sharp ? "sharp" : "no sharp",
+        members_where([&](size_t h) { return results.holes[h].hole.sharp_feature == sharp; }),
+        summary.positions, methods);
+    if (ranked_holes(summary, ranked) > 0) summary.feature_classes.push_back(std::move(ranked));
   }
   return summary;
 }
@@ -369,20 +493,30 @@ nlohmann::json summary_json(const BenchResults& results, const BenchSummary& sum
   nlohmann::json methods = nlohmann::json::object();
   for (size_t m = 0; m < results.methods.size(); ++m) {
     const MethodSummary& s = summary.methods[m];
-    methods[results.methods[m]] = {{"holes", results.holes.size()},
-                                   {"filled", s.filled},
-                                   {"meshes", summary.meshes},
-                                   {"closed_meshes", s.closed_meshes},
-                                   {"self_intersections", s.self_intersections},
-                                   {"hausdorff_median", s.hausdorff_median},
-                                   {"hausdorff_max", s.hausdorff_max},
-                                   {"mean_distance_median", s.mean_distance_median},
-                                   {"edge_ratio_mean", s.edge_ratio.mean},
-                                   {"edge_ratio_sd", s.edge_ratio.sd},
-                                   {"pearson_hausdorff_area", s.pearson},
-                                   {"pearson_holes", s.pearson_holes},
-                                   {"seconds_per_hole_median", s.seconds_median},
-                                   {"rank_shares", summary.overall.shares[m]}};
+    methods[results.methods[m]] = {
+        {"holes", results.holes.size()},
+        {"filled", s.filled},
+        {"meshes", summary.meshes},
+        {"closed_meshes", s.closed_meshes},
+        {"self_intersections", s.self_intersections},
+        {"hausdorff_median", s.hausdorff_median},
+        {"hausdorff_max", s.hausdorff_max},
+        {"mean_distance_median", s.mean_distance_median},
+        {"edge_ratio_mean", s.edge_ratio.mean},
+        {"edge_ratio_sd", s.edge_ratio.sd},
+        {"pearson_hausdorff_area", s.pearson},
+        {"pearson_holes", s.pearson_holes},
+        {"seconds_per_hole_median", s.seconds_median},
+        {"rank_shares", summary.overall.shares[m]},
+        {"hausdorff_median_ci95", interval_json(s.hausdorff_median_interval)},
+        {"first_share_ci95", interval_json(summary.first_share_intervals[m])},
+        {"versus_best",
+         {{"method", results.methods[summary.best]},
+          {"test", "Wilcoxon signed-rank, two-sided"},
+          {"pairs", s.versus_best.pairs},
+          {"statistic", s.versus_best.statistic},
+          {"p", number_or_null(s.versus_best.p)},
+          {"exact", s.versus_best.exact}}}};
   }
   auto class_list = [&](const std::vector<ClassRanking>& classes) {
     nlohmann::json list = nlohmann::json::array();
@@ -399,10 +533,15 @@ nlohmann::json summary_json(const BenchResults& results, const BenchSummary& sum
                      {"bending", hole.hole.bending},
                      {"curvature", curvature_name(hole.hole.curvature)},
                      {"sharp_feature", hole.hole.sharp_feature},
+                     {"alike_for_every_backend", static_cast<bool>(summary.alike[h])},
                      {"positions", summary.positions[h]}});
   }
   return {{"methods", methods},
           {"method_order", results.methods},
+          {"best", results.methods[summary.best]},
+          {"ranked_holes", ranked_holes(summary, summary.overall)},
+          {"holes_alike_for_every_backend", summary.alike_holes},
+          {"backends_among_themselves", backends_json(results, summary)},
           {"ranking",
            {{"all", shares_json(results, summary.overall)},
             {"area_classes", class_list(summary.area_classes)},

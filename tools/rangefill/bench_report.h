@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "rangefill/eval/evaluation.h"
+#include "rangefill/eval/statistics.h"
 
 namespace rangefill::cli {
 
@@ -30,7 +31,8 @@ struct BenchRun {
 };
 
 struct BenchResults {
-  std::vector<std::string> methods;
+  std::vector<std::string> methods;  // the back-ends of the pipeline first, then the baselines
+  int backends = 0;                  // how many of `methods` are back-ends
   std::vector<BenchHole> holes;
   std::vector<std::vector<BenchRun>> runs;  // [hole][method]
 };
@@ -46,6 +48,8 @@ struct ClassRanking {
 struct MethodSummary {
   int filled = 0, closed_meshes = 0, self_intersections = 0;
   double hausdorff_median = 0, hausdorff_max = 0, mean_distance_median = 0;  // over d_m
+  Interval hausdorff_median_interval;  // bootstrap, 95 %, over the holes it filled
+  SignedRankTest versus_best;  // H against the best method's on every hole (a failure: +inf)
   double seconds_median = 0;
   MeanSd edge_ratio;   // Table 8, over the filled holes
   double pearson = 0;  // Table 4: of H / d_m with area / d_m², over the filled holes (NaN: none)
@@ -55,6 +59,16 @@ struct MethodSummary {
 struct BenchSummary {
   int meshes = 0;
   std::vector<MethodSummary> methods;
+  int best = 0;  // the method of the lowest H median (over the holes it filled)
+  std::vector<Interval> first_share_intervals;  // per method, bootstrap 95 %, overall ranking
+  /// Per hole: every back-end filled it by the same strategy with the same patch (there are two
+  /// or more); such holes are left out of the back-ends' ranking among themselves, where they
+  /// would only be ties.
+  std::vector<bool> alike;
+  int alike_holes = 0;
+  std::vector<std::vector<int>> backend_positions;  // [hole][back-end], among the back-ends
+  ClassRanking backends;                            // over the holes not filled alike
+  std::vector<Interval> backend_first_share_intervals;
   std::vector<std::vector<int>> positions;  // [hole][method], rank_positions of H
   ClassRanking overall;                     // Table 3
   std::vector<ClassRanking> area_classes;   // Table 5
@@ -64,8 +78,8 @@ struct BenchSummary {
 /// The curvature classes, then the feature classes.
 std::vector<ClassRanking> surface_classes(const BenchSummary& summary);
 
-/// The aggregates, with `area_classes` classes of equal width in area / d_m²; values of H within
-/// `tie`·d_m of each other rank as equal.
+/// The aggregates, with `area_classes` classes of equal width in area / d_m² (those without a
+/// ranked hole left out); values of H within `tie`·d_m of each other rank as equal.
 BenchSummary summarize(const BenchResults& results, int area_classes, double tie);
 
 nlohmann::json summary_json(const BenchResults& results, const BenchSummary& summary);
