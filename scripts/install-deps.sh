@@ -9,6 +9,7 @@ packages=(
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module (python/)
   python3-matplotlib  # the plots of python/examples/fill_depth_folder.py
   clang-14 libclang-rt-14-dev  # libFuzzer and the sanitizer runtimes (scripts/fuzz.sh)
+  libjs-three chromium  # report.html's 3D views (three.js, inlined) and the browser test
 )
 missing=()
 for package in "${packages[@]}"; do

@@ -71,6 +71,18 @@ SurfaceDistance surface_distance(const Mesh& first, const std::vector<int>& firs
   return distance;
 }
 
+std::vector<double> distances_to_faces(const std::vector<Vec3>& points, const Mesh& mesh,
+                                       const std::vector<int>& faces) {
+  if (faces.empty()) throw InvalidInput("distances to faces: no face");
+  const std::vector<CgalTriangle> triangles = to_triangles(mesh, faces);
+  AabbTree tree(triangles.begin(), triangles.end());
+  tree.accelerate_distance_queries();
+  std::vector<double> distances;
+  distances.reserve(points.size());
+  for (const Vec3& p : points) distances.push_back(std::sqrt(tree.squared_distance(to_point(p))));
+  return distances;
+}
+
 ManifoldCheck check_manifold(const Mesh& mesh) {
   const MeshTopology topology = build_topology(mesh);
   ManifoldCheck check;

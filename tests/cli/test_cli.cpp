@@ -528,7 +528,7 @@ TEST(Cli, BenchComparesMethodsAndWritesItsReport) {
        at = html.find("data:image/png;base64,", at + 1)) {
     ++images;
   }
-  EXPECT_EQ(images, 3u * 4u);  // per hole: range image, mask, two restorations
+  EXPECT_EQ(images, 3u * 5u);  // per hole: range image, mask, two restorations, a difference
   for (const char* plot : {"hausdorff-vs-area.svg", "ranks-by-area.svg", "ranks-by-curvature.svg"})
     EXPECT_EQ(slurp(dir / "one" / plot).rfind("<svg", 0), 0u) << plot;
 
@@ -588,6 +588,39 @@ std::vector<std::vector<std::string>> csv_without_times(const std::string& csv) 
     }
   }
   return rows;
+}
+
+// report.html in headless Chromium (Debian's chromium, with WebGL in software): the page reports
+// in its body's data attributes how many holes it drew in 3D (a view that drew nothing or failed
+// is not counted), how many depth images it coloured and how many errors it met (a console error,
+// an uncaught exception or a rejected promise); Chromium's log has no uncaught error either.
+TEST(Cli, BenchReportOpensInABrowserWithA3DViewPerHole) {
+  if (std::system("command -v chromium >/dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "chromium is not installed (scripts/install-deps.sh installs it)";
+  }
+  const fs::path dir = testing::temporary_directory("cli-bench-browser");
+  write_mesh(testing::make_sphere(16), dir / "sphere.ply");
+  const Outcome bench = run("bench --meshes " + (dir / "sphere.ply").string() +
+                            " --holes-per-mesh 3 --seed 4 --max-radius 6 --inpainters "
+                            "harmonic,ns --filler plane --baselines cgal-fair --out " +
+                            (dir / "out").string());
+  ASSERT_EQ(bench.exit_code, 0) << bench.err;
+  const std::string browser =
+      "chromium --headless=new --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader "
+      "--enable-logging=stderr --v=0 --virtual-time-budget=15000 --user-data-dir=" +
+      (dir / "profile").string() + " --dump-dom file://" + (dir / "out" / "report.html").string() +
+      " >" + (dir / "dom.html").string() + " 2>" + (dir / "log.txt").string();
+  ASSERT_EQ(std::system(browser.c_str()), 0) << slurp(dir / "log.txt");
+  const std::string dom = slurp(dir / "dom.html"), log = slurp(dir / "log.txt");
+  const size_t body = dom.find("<body");
+  ASSERT_NE(body, std::string::npos) << log;
+  const std::string tag = dom.substr(body, dom.find('>', body) - body);
+  EXPECT_NE(tag.find("data-views=\"3\""), std::string::npos) << tag;
+  // Per hole: the range image, its mask, two restorations and the second's difference.
+  EXPECT_NE(tag.find("data-images=\"15\""), std::string::npos) << tag;
+  EXPECT_EQ(tag.find("data-errors"), std::string::npos) << tag << "\n" << log;
+  EXPECT_EQ(log.find("Uncaught"), std::string::npos) << log;
+  fs::remove_all(dir);
 }
 
 // `rangefill bench --shard K/N` runs a share of the (hole, method) jobs; `--merge` of the shards

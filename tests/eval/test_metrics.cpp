@@ -31,6 +31,22 @@ TEST(SurfaceDistance, ParallelSquaresAreTheirOffsetApart) {
   EXPECT_NEAR(d.mean, 0.1, 1e-12);
 }
 
+// Points above, beside and on the unit square: their distances to its faces, exactly; only the
+// faces asked for count (the right half alone is farther from a point over the left half).
+TEST(DistancesToFaces, AreThePointsDistancesToTheChosenFaces) {
+  const Mesh square = rectangle(1, 0);
+  const std::vector<double> d =
+      distances_to_faces({{0.25, 0.5, 0.3}, {2, 0.5, 0}, {0.5, 0.5, 0}}, square, kBoth);
+  ASSERT_EQ(d.size(), 3u);
+  EXPECT_NEAR(d[0], 0.3, 1e-12);
+  EXPECT_NEAR(d[1], 1.0, 1e-12);
+  EXPECT_NEAR(d[2], 0.0, 1e-12);
+  const Mesh two = make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0}, {2, 1, 0}},
+                             {{0, 1, 2}, {0, 2, 3}, {1, 4, 5}, {1, 5, 2}});
+  EXPECT_NEAR(distances_to_faces({{0.25, 0.5, 0}}, two, {2, 3})[0], 0.75, 1e-12);
+  EXPECT_THROW(distances_to_faces({{0, 0, 0}}, square, {}), InvalidInput);
+}
+
 // The unit square against its left half: the half lies on the square (0 from it), the square's
 // right edge is 0.5 from the half. The mean over all samples is strictly between.
 TEST(SurfaceDistance, OneSidedDistancesDifferForASubset) {

@@ -49,21 +49,6 @@ struct Punched {
   double mean_edge = 0;
 };
 
-std::string base64(const std::string& data) {
-  static const char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  const auto bytes = [&](size_t i) { return static_cast<unsigned>(static_cast<uchar>(data[i])); };
-  std::string text;
-  for (size_t i = 0; i < data.size(); i += 3) {
-    const unsigned n = bytes(i) << 16 | (i + 1 < data.size() ? bytes(i + 1) << 8 : 0) |
-                       (i + 2 < data.size() ? bytes(i + 2) : 0);
-    text += digits[n >> 18 & 63];
-    text += digits[n >> 12 & 63];
-    text += i + 1 < data.size() ? digits[n >> 6 & 63] : '=';
-    text += i + 2 < data.size() ? digits[n & 63] : '=';
-  }
-  return text;
-}
-
 // An 8-bit PNG, base64: `image` (values in [0, 1], saturated) times 255.
 std::string png_base64(const cv::Mat& image) {
   cv::Mat bytes;
@@ -107,6 +92,21 @@ HoleScore score_from_json(const json& j) {
   return s;
 }
 
+// A mesh's positions and triangles, [[x, y, z]...], [[a, b, c]...].
+json mesh_json(const Mesh& mesh) {
+  json positions = json::array(), triangles = json::array();
+  for (const Vec3& p : mesh.positions) positions.push_back({p.x(), p.y(), p.z()});
+  for (const Triangle& t : mesh.triangles) triangles.push_back(t);
+  return {positions, triangles};
+}
+
+Mesh mesh_from_json(const json& j) {
+  Mesh mesh;
+  for (const auto& p : j.at(0)) mesh.positions.emplace_back(p[0], p[1], p[2]);
+  for (const auto& t : j.at(1)) mesh.triangles.push_back(t.get<Triangle>());
+  return mesh;
+}
+
 // What a child sends back for one method on one hole.
 std::string run_json(const HoleRun& run, bool images, bool patch) {
   json j = {{"score", score_json(run.score)},
@@ -119,12 +119,7 @@ std::string run_json(const HoleRun& run, bool images, bool patch) {
     j["images"] = {png_base64(known), png_base64(run.labels == kHolePixel),
                    png_base64(run.restored)};
   }
-  if (patch) {
-    json positions = json::array(), triangles = json::array();
-    for (const Vec3& p : run.patch.positions) positions.push_back({p.x(), p.y(), p.z()});
-    for (const Triangle& t : run.patch.triangles) triangles.push_back(t);
-    j["patch"] = {positions, triangles};
-  }
+  if (patch) j["patch"] = mesh_json(run.patch);
   return j.dump();
 }
 
@@ -135,8 +130,8 @@ json job_entry(const ChildResult& child) {
   return {{"failure", child.failure}, {"wall_seconds", child.seconds}};
 }
 
-// The run of a job entry (job_entry); its patch, if it sent one, into `patch`.
-BenchRun run_from_entry(const json& j, const BenchHole& hole, Mesh& patch) {
+// The run of a job entry (job_entry), with its patch if it sent one.
+BenchRun run_from_entry(const json& j, const BenchHole& hole) {
   BenchRun run;
   run.wall_seconds = j.at("wall_seconds");
   if (!j.contains("score")) {
@@ -153,10 +148,7 @@ BenchRun run_from_entry(const json& j, const BenchHole& hole, Mesh& patch) {
     run.mask_png = j["images"][1];
     run.restored_png = j["images"][2];
   }
-  if (j.contains("patch")) {
-    for (const auto& p : j["patch"][0]) patch.positions.emplace_back(p[0], p[1], p[2]);
-    for (const auto& t : j["patch"][1]) patch.triangles.push_back(t.get<Triangle>());
-  }
+  if (j.contains("patch")) run.patch = mesh_from_json(j["patch"]);
   return run;
 }
 
@@ -313,6 +305,28 @@ void check_closed(const Mesh& mesh, const std::string& file) {
                      "rangefill repair --fill-all)");
 }
 
+// The report's view of punched hole h of `mesh`: its removed faces and the faces of the punched
+// mesh within twice the truth's radius (from its centroid) of it.
+HoleView hole_view(const Punched& mesh, int h) {
+  HoleView view;
+  view.truth = extract_faces(mesh.original, mesh.punched.holes[h].removed_faces);
+  Vec3 centre = Vec3::Zero();
+  for (const Vec3& p : view.truth.positions) centre += p;
+  centre /= static_cast<double>(view.truth.positions.size());
+  double radius = 0;
+  for (const Vec3& p : view.truth.positions) radius = std::max(radius, (p - centre).norm());
+  const Mesh& punched = mesh.punched.mesh;
+  std::vector<int> near;
+  for (int f = 0; f < punched.face_count(); ++f) {
+    bool inside = true;
+    for (int v : punched.triangles[f])
+      inside &= (punched.positions[v] - centre).norm() < 2 * radius;
+    if (inside) near.push_back(f);
+  }
+  view.surroundings = extract_faces(punched, near);
+  return view;
+}
+
 // Each mesh punched with its own seed; its holes appended to `results`, and for each benchmark
 // hole its mesh and its index there to `hole_of`.
 std::vector<Punched> punch_meshes(const BenchCommand& command, const std::vector<fs::path>& files,
@@ -388,9 +402,11 @@ void write_report(const BenchCommand& command, const BenchResults& results,
   write_output("# rangefill bench\n\n`" + made_by + "`\n\n" + markdown_tables(results, summary),
                dir / "tables.md", inputs);
   write_output(hausdorff_area_svg(results), dir / "hausdorff-vs-area.svg", inputs);
-  write_output(class_ranking_svg(results, summary.area_classes), dir / "ranks-by-area.svg", inputs);
-  write_output(class_ranking_svg(results, surface_classes(summary)), dir / "ranks-by-curvature.svg",
-               inputs);
+  write_output(class_ranking_svg(results, summary.area_classes, "hole area / d_m²"),
+               dir / "ranks-by-area.svg", inputs);
+  write_output(
+      class_ranking_svg(results, surface_classes(summary), "curvature class, sharp feature"),
+      dir / "ranks-by-curvature.svg", inputs);
   write_output(html_report(results, summary, made_by, command.tie), dir / "report.html", inputs);
 }
 
@@ -474,8 +490,11 @@ std::string shard_file_name(std::pair<int, int> shard) {
 void write_shard(const BenchCommand& command, const BenchResults& results,
                  const std::vector<fs::path>& files, std::pair<int, int> shard,
                  const std::vector<int>& jobs, const std::vector<ChildResult>& children) {
-  json holes = json::array(), runs = json::object();
+  json holes = json::array(), views = json::array(), runs = json::object();
   for (const BenchHole& hole : results.holes) holes.push_back(hole_json(hole));
+  for (const HoleView& view : results.views) {
+    views.push_back({mesh_json(view.surroundings), mesh_json(view.truth)});
+  }
   for (size_t i = 0; i < jobs.size(); ++i) runs[std::to_string(jobs[i])] = job_entry(children[i]);
   const json document = {{"format", kShardFormat},
                          {"shard", {shard.first, shard.second}},
@@ -484,6 +503,7 @@ void write_shard(const BenchCommand& command, const BenchResults& results,
                          {"methods", results.methods},
                          {"backends", results.backends},
                          {"holes", holes},
+                         {"views", views},
                          {"runs", runs}};
   fs::create_directories(command.out);
   write_output(document.dump() + "\n", fs::path(command.out) / shard_file_name(shard), files);
@@ -566,9 +586,10 @@ int merge_shards(const BenchCommand& command) {
     for (size_t m = 0; m < method_count; ++m) {
       const std::string job = std::to_string(h * method_count + m);
       if (!entries.contains(job)) throw InvalidInput("--merge: job " + job + " is in no shard");
-      Mesh patch;
-      results.runs[h].push_back(run_from_entry(entries[job], results.holes[h], patch));
+      results.runs[h].push_back(run_from_entry(entries[job], results.holes[h]));
     }
+    results.views.push_back({mesh_from_json(first.at("views").at(h).at(0)),
+                             mesh_from_json(first.at("views").at(h).at(1))});
   }
   const std::string made_by = first.at("command").get<std::string>() + " (merged from " +
                               std::to_string(count) + " shards)";
@@ -613,7 +634,10 @@ int run_bench(const BenchCommand& command) {
   const std::pair<int, int> shard =
       command.shard.empty() ? std::pair<int, int>{0, 1} : parse_shard(command.shard);
   const std::vector<int> jobs = shard_of(all_jobs, shard);
-  const bool images = !command.out.empty(), patches = !command.save.empty();
+  const bool images = !command.out.empty(), patches = images || !command.save.empty();
+  if (images) {
+    for (const auto& [m, h] : hole_of) results.views.push_back(hole_view(meshes[m], h));
+  }
   const bool progress = stderr_is_terminal();
   int finished = 0;
   const std::vector<ChildResult> children = run_in_children(
@@ -642,10 +666,9 @@ int run_bench(const BenchCommand& command) {
   for (size_t h = 0; h < results.holes.size(); ++h) {
     results.runs.emplace_back();
     for (int k = 0; k < method_count; ++k) {
-      Mesh patch;
       results.runs[h].push_back(
-          run_from_entry(job_entry(children[h * method_count + k]), results.holes[h], patch));
-      patch_parts[hole_of[h].first * method_count + k].push_back(std::move(patch));
+          run_from_entry(job_entry(children[h * method_count + k]), results.holes[h]));
+      patch_parts[hole_of[h].first * method_count + k].push_back(results.runs[h].back().patch);
     }
   }
   if (!command.save.empty()) save_meshes(command, meshes, methods, patch_parts, files);

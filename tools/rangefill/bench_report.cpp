@@ -4,9 +4,12 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <sstream>
 
 #include "cli.h"
+#include "rangefill/eval/metrics.h"
+#include "report_scripts.h"
 #include "svg.h"
 
 namespace rangefill::cli {
@@ -19,6 +22,7 @@ struct Table {
   std::string title;  // with the paper's table it mirrors
   std::vector<std::string> header;
   std::vector<std::vector<std::string>> rows;
+  std::vector<int> row_holes = {};  // in HTML, each row's first cell opens this hole (when given)
 };
 
 std::string fixed(double value, int digits = 2) {
@@ -161,6 +165,21 @@ Table first_place_table(const std::string& title, const BenchResults& results,
 
 }  // namespace
 
+std::string base64(const std::string& data) {
+  static const char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  const auto bytes = [&](size_t i) { return static_cast<unsigned>(static_cast<uchar>(data[i])); };
+  std::string text;
+  for (size_t i = 0; i < data.size(); i += 3) {
+    const unsigned n = bytes(i) << 16 | (i + 1 < data.size() ? bytes(i + 1) << 8 : 0) |
+                       (i + 2 < data.size() ? bytes(i + 2) : 0);
+    text += digits[n >> 18 & 63];
+    text += digits[n >> 12 & 63];
+    text += i + 1 < data.size() ? digits[n >> 6 & 63] : '=';
+    text += i + 2 < data.size() ? digits[n & 63] : '=';
+  }
+  return text;
+}
+
 std::vector<ClassRanking> surface_classes(const BenchSummary& summary) {
   std::vector<ClassRanking> both = summary.curvature_classes;
   both.insert(both.end(), summary.feature_classes.begin(), summary.feature_classes.end());
@@ -269,6 +288,7 @@ std::vector<Table> tables(const BenchResults& results, const BenchSummary& summa
           std::isnan(value) ? "open" : fixed(value) + " (" + results.runs[h][m].score.method + ")");
     }
     holes.rows.push_back(std::move(row));
+    holes.row_holes.push_back(static_cast<int>(h));
   }
   all.push_back(std::move(holes));
   return all;
@@ -295,42 +315,61 @@ std::string to_html(const Table& table) {
   html << "<h3>" << escape_xml(table.title) << "</h3>\n<table>\n<tr>";
   for (const std::string& cell : table.header) html << "<th>" << escape_xml(cell) << "</th>";
   html << "</tr>\n";
-  for (const auto& row : table.rows) {
+  for (size_t r = 0; r < table.rows.size(); ++r) {
     html << "<tr>";
-    for (const std::string& cell : row) html << "<td>" << escape_xml(cell) << "</td>";
+    for (size_t c = 0; c < table.rows[r].size(); ++c) {
+      const std::string cell = escape_xml(table.rows[r][c]);
+      if (c == 0 && r < table.row_holes.size()) {
+        const std::string hole = std::to_string(table.row_holes[r]);
+        html << "<td><a href=\"#hole-" << hole << "\" data-hole=\"" << hole << "\">" << cell
+             << "</a></td>";
+      } else {
+        html << "<td>" << cell << "</td>";
+      }
+    }
     html << "</tr>\n";
   }
   html << "</table>\n";
   return html.str();
 }
 
-std::string image(const std::string& png, const std::string& caption) {
-  return "<figure><img src=\"data:image/png;base64," + png + "\" alt=\"" + escape_xml(caption) +
-         "\"><figcaption>" + escape_xml(caption) + "</figcaption></figure>\n";
+// A depth image of a hole; report.js colours it by its `kind` (depth, mask, restored, or
+// difference-source: a restoration shown as its difference from the first).
+std::string image(const std::string& png, const std::string& kind, const std::string& caption) {
+  return "<figure><img class=\"depth\" data-kind=\"" + kind + "\" src=\"data:image/png;base64," +
+         png + "\" alt=\"" + escape_xml(caption) + "\"><figcaption>" + escape_xml(caption) +
+         "</figcaption></figure>\n";
 }
 
-// One hole of the gallery: its description, images and every method's outcome.
+// One hole of the gallery: its description, its 3D view's button, its images and every method's
+// outcome.
 std::string hole_section(const BenchResults& results, size_t h) {
   const BenchHole& hole = results.holes[h];
   std::ostringstream html;
-  html << "<section class=\"hole\"><h3>" << escape_xml(hole.mesh) << ", hole " << hole.index
-       << "</h3>\n<p>" << shape_name(hole.hole.shape) << ", " << fixed(area_in_dm2(hole), 0)
+  html << "<section class=\"hole\" id=\"hole-" << h << "\"><h3>" << escape_xml(hole.mesh)
+       << ", hole " << hole.index << " <button data-hole=\"" << h << "\">3D view</button></h3>\n<p>"
+       << shape_name(hole.hole.shape) << ", " << fixed(area_in_dm2(hole), 0)
        << " d<sub>m</sub>², bending " << fixed(hole.hole.bending) << " ("
        << curvature_name(hole.hole.curvature) << " curvature"
        << (hole.hole.sharp_feature ? ", on a sharp feature" : "") << ")</p>\n<div class=\"row\">";
-  bool shown = false;
+  std::string first;  // the method of the first restoration
   for (size_t m = 0; m < results.methods.size(); ++m) {
     const BenchRun& run = results.runs[h][m];
     if (run.depth_png.empty()) continue;
-    if (!shown) {
-      html << image(run.depth_png, "range image") << image(run.mask_png, "mask");
-      shown = true;
-    }
     const double value = hausdorff_in_dm(results, h, m);
-    html << image(run.restored_png, results.methods[m] + ": H " +
-                                        (std::isnan(value) ? "open" : fixed(value) + " d_m"));
+    const std::string caption =
+        results.methods[m] + ": H " + (std::isnan(value) ? "open" : fixed(value) + " d_m");
+    if (first.empty()) {
+      html << image(run.depth_png, "depth", "range image (unknown: black)")
+           << image(run.mask_png, "mask", "mask") << image(run.restored_png, "restored", caption);
+      first = results.methods[m];
+    } else {
+      html << image(run.restored_png, "restored", caption)
+           << image(run.restored_png, "difference-source",
+                    results.methods[m] + " − " + first + " (blue below, red above)");
+    }
   }
-  if (!shown) html << "<p>No range image: no method inpainted this hole.</p>";
+  if (first.empty()) html << "<p>No range image: no method inpainted this hole.</p>";
   html << "</div>\n<table><tr><th>method</th><th>H / d_m</th><th>filled by</th><th>new "
           "faces</th><th>failure</th></tr>\n";
   for (size_t m = 0; m < results.methods.size(); ++m) {
@@ -342,6 +381,71 @@ std::string hole_section(const BenchResults& results, size_t h) {
   }
   html << "</table></section>\n";
   return html.str();
+}
+
+// The bytes of `values` (little-endian on the machines we build for), base64.
+template <typename Value>
+std::string base64_of(const std::vector<Value>& values) {
+  return base64(
+      std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(Value)));
+}
+
+// A mesh for report.js: positions as float32 relative to `centre`, triangles as uint32.
+nlohmann::json view_mesh_json(const Mesh& mesh, const Vec3& centre) {
+  std::vector<float> positions;
+  for (const Vec3& p : mesh.positions) {
+    for (int k = 0; k < 3; ++k) positions.push_back(static_cast<float>(p[k] - centre[k]));
+  }
+  std::vector<std::uint32_t> triangles;
+  for (const Triangle& t : mesh.triangles) triangles.insert(triangles.end(), t.begin(), t.end());
+  return {{"p", base64_of(positions)}, {"t", base64_of(triangles)}};
+}
+
+// What report.js draws: per hole its surroundings, its truth and each method's patch with the
+// distance of each patch vertex to the truth in d_m, on a scale shared by the methods.
+nlohmann::json views_json(const BenchResults& results, const BenchSummary& summary) {
+  nlohmann::json holes = nlohmann::json::array();
+  for (size_t h = 0; h < results.views.size(); ++h) {
+    const HoleView& view = results.views[h];
+    const double d_m = results.holes[h].mean_edge;
+    Vec3 centre = Vec3::Zero();
+    for (const Vec3& p : view.truth.positions) centre += p;
+    centre /= std::max<double>(1, view.truth.positions.size());
+    std::vector<int> truth_faces(view.truth.face_count());
+    std::iota(truth_faces.begin(), truth_faces.end(), 0);
+    double scale = 0;
+    nlohmann::json methods = nlohmann::json::array();
+    for (size_t m = 0; m < results.methods.size(); ++m) {
+      const BenchRun& run = results.runs[h][m];
+      nlohmann::json method = {{"name", results.methods[m]},
+                               {"h", fixed(hausdorff_in_dm(results, h, m))},
+                               {"patch", nullptr}};
+      if (run.score.filled && !run.patch.triangles.empty() && !truth_faces.empty()) {
+        std::vector<float> distances;
+        for (double d : distances_to_faces(run.patch.positions, view.truth, truth_faces)) {
+          distances.push_back(static_cast<float>(d / d_m));
+          scale = std::max(scale, d / d_m);
+        }
+        method["patch"] = view_mesh_json(run.patch, centre);
+        method["d"] = base64_of(distances);
+      }
+      methods.push_back(method);
+    }
+    // Shown first: the method ranked first on the hole (else the first).
+    int best = 0;
+    const std::vector<int>& positions = summary.positions[h];
+    for (size_t m = 0; m < positions.size(); ++m) {
+      if (positions[m] < positions[best]) best = static_cast<int>(m);
+    }
+    holes.push_back(
+        {{"title", results.holes[h].mesh + ", hole " + std::to_string(results.holes[h].index)},
+         {"scale", std::max(scale, 1e-9)},
+         {"best", best},
+         {"surroundings", view_mesh_json(view.surroundings, centre)},
+         {"truth", view_mesh_json(view.truth, centre)},
+         {"methods", methods}});
+  }
+  return {{"holes", holes}};
 }
 
 // A number, or null for NaN (JSON has no NaN).
@@ -557,9 +661,9 @@ std::string markdown_tables(const BenchResults& results, const BenchSummary& sum
 }
 
 std::string hausdorff_area_svg(const BenchResults& results) {
-  std::vector<ScatterPanel> panels;
+  std::vector<ScatterSeries> panels;
   for (size_t m = 0; m < results.methods.size(); ++m) {
-    ScatterPanel panel{results.methods[m], {}, {}};
+    ScatterSeries panel{results.methods[m], {}, {}};
     for (size_t h = 0; h < results.holes.size(); ++h) {
       const double value = hausdorff_in_dm(results, h, m);
       if (std::isnan(value)) continue;
@@ -568,11 +672,11 @@ std::string hausdorff_area_svg(const BenchResults& results) {
     }
     panels.push_back(std::move(panel));
   }
-  return scatter_panels_svg(panels, "hole area / d_m²", "Hausdorff distance / d_m");
+  return scatter_svg(panels, "hole area / d_m²", "Hausdorff distance / d_m");
 }
 
-std::string class_ranking_svg(const BenchResults& results,
-                              const std::vector<ClassRanking>& classes) {
+std::string class_ranking_svg(const BenchResults& results, const std::vector<ClassRanking>& classes,
+                              const std::string& class_label) {
   std::vector<BarPanel> panels;
   for (size_t m = 0; m < results.methods.size(); ++m) {
     BarPanel panel{results.methods[m], {}, {}};
@@ -582,40 +686,71 @@ std::string class_ranking_svg(const BenchResults& results,
     }
     panels.push_back(std::move(panel));
   }
-  return stacked_bars_svg(panels, position_names(results.methods.size()));
+  return stacked_bars_svg(panels, position_names(results.methods.size()), class_label);
 }
 
 std::string html_report(const BenchResults& results, const BenchSummary& summary,
                         const std::string& command, double tie) {
   std::ostringstream html;
   html << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
-          "<title>rangefill bench</title>\n<style>\n"
+          "<title>rangefill bench</title>\n"
+          // First of all: the page's errors counted where the browser test reads them.
+          "<script>window.reportErrors=0;function reportError(){++window.reportErrors;"
+          "if(document.body)document.body.dataset.errors=window.reportErrors;}"
+          "window.addEventListener('error',reportError);"
+          "window.addEventListener('unhandledrejection',reportError);"
+          "const consoleError=console.error;console.error=function(...a){reportError();"
+          "consoleError.apply(console,a);};</script>\n<style>\n"
           "body{font-family:sans-serif;margin:2em;max-width:1400px}\n"
           "table{border-collapse:collapse;margin:0.5em 0 1.5em}\n"
           "td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}\n"
           "td:first-child,th:first-child{text-align:left}\n"
-          ".row{display:flex;flex-wrap:wrap;gap:8px}\n"
-          "figure{margin:0}figcaption{font-size:80%;text-align:center}\n"
-          "img{width:160px;image-rendering:pixelated;border:1px solid #ccc}\n"
+          ".row{display:flex;flex-wrap:wrap;gap:10px}\n"
+          "figure{margin:0;width:220px}figcaption{font-size:80%;text-align:center}\n"
+          ".depth{width:220px;image-rendering:pixelated;border:1px solid #ccc}\n"
           ".hole{border-top:1px solid #999;margin-top:1em}\n"
+          "#viewer{position:fixed;right:12px;bottom:12px;width:480px;background:#fff;"
+          "border:1px solid #888;box-shadow:0 2px 8px #0004;font-size:85%;z-index:10}\n"
+          "#viewer.closed .canvas,#viewer.closed .methods,#viewer.closed .legend{display:none}\n"
+          "#viewer .bar{display:flex;gap:8px;align-items:center;padding:4px;background:#eee}\n"
+          "#viewer .title{flex:1}#viewer .canvas{width:480px;height:360px}\n"
+          "#viewer .methods button.on{font-weight:bold;background:#cde}\n"
+          "#viewer .legend{display:flex;gap:6px;align-items:center;padding:4px}\n"
+          "#viewer .legend-bar{flex:1;height:10px}\n"
           "</style></head><body>\n<h1>rangefill bench</h1>\n<p><code>"
        << escape_xml(command)
        << "</code></p>\n<p>H: symmetric Hausdorff distance between each patch and the faces "
           "removed (Pérez et al., Section X); a method that did not close a hole is ranked last "
           "on it; distances within "
-       << fixed(tie, 3) << " d_m of each other share the better place.</p>\n";
+       << fixed(tie, 3)
+       << " d_m of each other share the better place. Click a hole (in the last table or its "
+          "section) for its 3D view: the surroundings in grey, the faces removed (the ground "
+          "truth) as a black wireframe, each method's patch coloured by its distance to the "
+          "truth.</p>\n"
+          "<div id=\"viewer\" class=\"closed\"><div class=\"bar\"><span class=\"title\">3D "
+          "view</span><label><input type=\"checkbox\" id=\"viewer-truth\" checked> ground "
+          "truth</label><button class=\"close\">show / hide</button></div>"
+          "<div class=\"canvas\"></div><div class=\"methods\"></div><div class=\"legend\">"
+          "distance to the truth: 0<span class=\"legend-bar\"></span><span "
+          "class=\"legend-high\"></span></div></div>\n";
   const std::vector<Table> all = tables(results, summary);
   for (size_t t = 0; t + 1 < all.size(); ++t) html << to_html(all[t]);
-  html << "<h2>Plots</h2>\n<h3>Hausdorff distance against hole area</h3>\n"
+  html << "<h2>Plots</h2>\n<h3>Hausdorff distance against hole area, every method</h3>\n"
        << hausdorff_area_svg(results) << "<h3>Positions by hole-area class</h3>\n"
-       << class_ranking_svg(results, summary.area_classes)
+       << class_ranking_svg(results, summary.area_classes, "hole area / d_m²")
        << "<h3>Positions by curvature class and sharp feature</h3>\n"
-       << class_ranking_svg(results, surface_classes(summary)) << "<h2>Holes</h2>\n"
+       << class_ranking_svg(results, surface_classes(summary), "curvature class, sharp feature")
+       << "<h2>Holes</h2>\n"
        << to_html(all.back())
-       << "<p>Each hole's range image (normalised depth of the first plane tried, unknown pixels "
-          "black), its mask and each back-end's restoration of it.</p>\n";
+       << "<p>Each hole's range image (normalised depth of the first plane tried, in the viridis "
+          "colour map, unknown pixels black), its mask, each back-end's restoration in the same "
+          "colour map and, for the second back-end on, its difference from the first "
+          "restoration.</p>\n";
   for (size_t h = 0; h < results.holes.size(); ++h) html << hole_section(results, h);
-  html << "</body></html>\n";
+  html << "<script type=\"application/json\" id=\"bench-views\">"
+       << views_json(results, summary).dump() << "</script>\n<script>" << kThreeJs
+       << "</script>\n<script>" << kOrbitControlsJs << "</script>\n<script>" << kReportJs
+       << "</script>\n</body></html>\n";
   return html.str();
 }
 

@@ -21,6 +21,12 @@ struct BenchHole {
   PunchedHole hole;      // removed_faces left out
 };
 
+/// What the report's 3D view of a hole shows besides the patches: the surface round the hole
+/// (faces of the punched mesh near it) and the faces punched out (the ground truth).
+struct HoleView {
+  Mesh surroundings, truth;
+};
+
 /// One method on one hole, as it came back from its child process.
 struct BenchRun {
   HoleScore score;
@@ -28,6 +34,7 @@ struct BenchRun {
   bool manifold = false;
   double wall_seconds = 0;
   std::string depth_png, mask_png, restored_png;  // base64; empty without a range image
+  Mesh patch;                                     // the generated faces (with --out or --save)
 };
 
 struct BenchResults {
@@ -35,6 +42,7 @@ struct BenchResults {
   int backends = 0;                  // how many of `methods` are back-ends
   std::vector<BenchHole> holes;
   std::vector<std::vector<BenchRun>> runs;  // [hole][method]
+  std::vector<HoleView> views;              // per hole, with --out
 };
 
 /// The ranking within one class of holes.
@@ -84,18 +92,22 @@ BenchSummary summarize(const BenchResults& results, int area_classes, double tie
 
 nlohmann::json summary_json(const BenchResults& results, const BenchSummary& summary);
 
+/// `data` in base64.
+std::string base64(const std::string& data);
+
 /// Every table of the summary as Markdown, each under a heading naming the paper's table.
 std::string markdown_tables(const BenchResults& results, const BenchSummary& summary);
 
-/// H / d_m against area / d_m², one panel per method.
+/// H / d_m against area / d_m², the methods overlaid.
 std::string hausdorff_area_svg(const BenchResults& results);
 
-/// Shares of the positions by class, one panel per method.
-std::string class_ranking_svg(const BenchResults& results,
-                              const std::vector<ClassRanking>& classes);
+/// Shares of the positions by class (named along `class_label`), one panel per method.
+std::string class_ranking_svg(const BenchResults& results, const std::vector<ClassRanking>& classes,
+                              const std::string& class_label);
 
-/// One self-contained page: the tables, the plots and, for each hole, its range image, mask and
-/// each back-end's restoration; `tie` as for summarize.
+/// One self-contained page: the tables, the plots and, for each hole, a 3D view (three.js: the
+/// surroundings, the truth and each method's patch coloured by its distance to the truth), its
+/// range image, mask and each back-end's restoration; `tie` as for summarize.
 std::string html_report(const BenchResults& results, const BenchSummary& summary,
                         const std::string& command, double tie);
 

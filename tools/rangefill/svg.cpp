@@ -110,43 +110,77 @@ std::string escape_xml(const std::string& text) {
   return escaped;
 }
 
-std::string scatter_panels_svg(const std::vector<ScatterPanel>& panels, const std::string& x_label,
-                               const std::string& y_label) {
+std::string scatter_svg(const std::vector<ScatterSeries>& series, const std::string& x_label,
+                        const std::string& y_label) {
   std::vector<double> xs, ys;
-  for (const ScatterPanel& p : panels) {
-    xs.insert(xs.end(), p.x.begin(), p.x.end());
-    ys.insert(ys.end(), p.y.begin(), p.y.end());
+  for (const ScatterSeries& one : series) {
+    xs.insert(xs.end(), one.x.begin(), one.x.end());
+    ys.insert(ys.end(), one.y.begin(), one.y.end());
   }
   const auto x_range = decades(xs), y_range = decades(ys);
-  constexpr size_t kColumns = 3;
+  constexpr double kWidth = 640, kHeight = 420, kX0 = 60, kY0 = 20, kLegend = 150;
+  constexpr double kPlotW = kWidth - kX0 - kLegend, kPlotH = kHeight - kY0 - 50;
   std::ostringstream svg;
-  open(svg, panels.size(), kColumns, 0);
-  for (size_t i = 0; i < panels.size(); ++i) {
-    const auto [x0, y0] = panel(svg, i, kColumns, 0, panels[i].title, x_label, y_label);
-    for (int d = x_range.first; d <= x_range.second; ++d) {
-      const double x = x0 + kPlotWidth * (d - x_range.first) / (x_range.second - x_range.first);
-      line(svg, x, y0, x, y0 + kPlotHeight, "#ddd");
-      text(svg, x, y0 + kPlotHeight + 14, number(std::pow(10.0, d)));
-    }
-    for (int d = y_range.first; d <= y_range.second; ++d) {
-      const double y =
-          y0 + kPlotHeight * (1 - double(d - y_range.first) / (y_range.second - y_range.first));
-      line(svg, x0, y, x0 + kPlotWidth, y, "#ddd");
-      text(svg, x0 - 4, y + 4, number(std::pow(10.0, d)), "end");
-    }
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << number(kWidth) << "\" height=\""
+      << number(kHeight) << "\" viewBox=\"0 0 " << number(kWidth) << " " << number(kHeight)
+      << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
+      << "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
+  for (int d = x_range.first; d <= x_range.second; ++d) {
+    const double x = kX0 + kPlotW * (d - x_range.first) / (x_range.second - x_range.first);
+    line(svg, x, kY0, x, kY0 + kPlotH, "#ddd");
+    text(svg, x, kY0 + kPlotH + 15, number(std::pow(10.0, d)));
+  }
+  for (int d = y_range.first; d <= y_range.second; ++d) {
+    const double y =
+        kY0 + kPlotH * (1 - double(d - y_range.first) / (y_range.second - y_range.first));
+    line(svg, kX0, y, kX0 + kPlotW, y, "#ddd");
+    text(svg, kX0 - 4, y + 4, number(std::pow(10.0, d)), "end");
+  }
+  svg << "<rect x=\"" << number(kX0) << "\" y=\"" << number(kY0) << "\" width=\"" << number(kPlotW)
+      << "\" height=\"" << number(kPlotH) << "\" fill=\"none\" stroke=\"#000\"/>\n";
+  text(svg, kX0 + kPlotW / 2, kHeight - 12, x_label);
+  const double ly = kY0 + kPlotH / 2;
+  text(svg, 16, ly, y_label, "middle",
+       (" transform=\"rotate(-90 16 " + number(ly) + ")\"").c_str());
+  // Markers by series: circles, squares, triangles, diamonds, then again in other colours.
+  auto marker = [&](size_t i, double x, double y) {
     const char* color = kColors[i % kColorCount];
-    for (size_t k = 0; k < panels[i].x.size() && k < panels[i].y.size(); ++k) {
-      svg << "<circle cx=\"" << number(x0 + kPlotWidth * on_log_axis(panels[i].x[k], x_range))
-          << "\" cy=\"" << number(y0 + kPlotHeight * (1 - on_log_axis(panels[i].y[k], y_range)))
-          << "\" r=\"2.5\" fill=\"" << color << "\" fill-opacity=\"0.7\"/>\n";
+    switch (i % 4) {
+      case 0:
+        svg << "<circle cx=\"" << number(x) << "\" cy=\"" << number(y) << "\" r=\"3.5\"";
+        break;
+      case 1:
+        svg << "<rect x=\"" << number(x - 3) << "\" y=\"" << number(y - 3)
+            << "\" width=\"6\" height=\"6\"";
+        break;
+      case 2:
+        svg << "<polygon points=\"" << number(x) << "," << number(y - 4) << " " << number(x - 4)
+            << "," << number(y + 3) << " " << number(x + 4) << "," << number(y + 3) << "\"";
+        break;
+      default:
+        svg << "<polygon points=\"" << number(x) << "," << number(y - 4) << " " << number(x + 4)
+            << "," << number(y) << " " << number(x) << "," << number(y + 4) << " " << number(x - 4)
+            << "," << number(y) << "\"";
     }
+    svg << " fill=\"" << color << "\" fill-opacity=\"0.6\" stroke=\"" << color << "\"/>\n";
+  };
+  for (size_t i = 0; i < series.size(); ++i) {
+    for (size_t k = 0; k < series[i].x.size() && k < series[i].y.size(); ++k) {
+      marker(i, kX0 + kPlotW * on_log_axis(series[i].x[k], x_range),
+             kY0 + kPlotH * (1 - on_log_axis(series[i].y[k], y_range)));
+    }
+    const double legend_y = kY0 + 10 + 18 * i;
+    marker(i, kX0 + kPlotW + 16, legend_y - 4);
+    text(svg, kX0 + kPlotW + 26, legend_y,
+         series[i].name + " (" + std::to_string(series[i].x.size()) + ")", "start");
   }
   svg << "</svg>\n";
   return svg.str();
 }
 
 std::string stacked_bars_svg(const std::vector<BarPanel>& panels,
-                             const std::vector<std::string>& segment_names) {
+                             const std::vector<std::string>& segment_names,
+                             const std::string& x_label) {
   constexpr size_t kColumns = 2;
   constexpr double kHeader = 22;
   std::ostringstream svg;
@@ -160,7 +194,7 @@ std::string stacked_bars_svg(const std::vector<BarPanel>& panels,
   }
   for (size_t i = 0; i < panels.size(); ++i) {
     const BarPanel& p = panels[i];
-    const auto [x0, y0] = panel(svg, i, kColumns, kHeader, p.title, "class", "share of holes");
+    const auto [x0, y0] = panel(svg, i, kColumns, kHeader, p.title, x_label, "share of holes");
     for (int percent = 0; percent <= 100; percent += 25) {
       const double y = y0 + kPlotHeight * (1 - percent / 100.0);
       line(svg, x0, y, x0 + kPlotWidth, y, "#ddd");

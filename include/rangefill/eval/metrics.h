@@ -27,6 +27,11 @@ SurfaceDistance surface_distance(const Mesh& first, const std::vector<int>& firs
                                  const Mesh& second, const std::vector<int>& second_faces,
                                  double spacing);
 
+/// The distance from each of `points` to the nearest of `faces` of `mesh` (exact point-to-triangle
+/// distances, CGAL AABB tree). Throws InvalidInput if `faces` is empty.
+std::vector<double> distances_to_faces(const std::vector<Vec3>& points, const Mesh& mesh,
+                                       const std::vector<int>& faces);
+
 /// Whether a mesh is a closed, consistently oriented 2-manifold, and why not.
 struct ManifoldCheck {
   int boundary_loops = 0;
