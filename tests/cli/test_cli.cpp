@@ -469,6 +469,16 @@ TEST(Cli, BenchRefusesAMeshThatIsNotClosed) {
   fs::remove_all(dir);
 }
 
+// Writes a sphere into `dir` and returns the bench command the bench tests share: three holes
+// punched into it, two back-ends on planes and `baselines`.
+std::string sphere_bench(const fs::path& dir, const std::string& baselines) {
+  write_mesh(testing::make_sphere(16), dir / "sphere.ply");
+  return "bench --meshes " + (dir / "sphere.ply").string() +
+         " --holes-per-mesh 3 --seed 4 --max-radius 6 --inpainters harmonic,ns --filler plane "
+         "--baselines " +
+         baselines;
+}
+
 // `rangefill bench` on a sphere with two back-ends (on planes) and a baseline, each hole and method
 // in a process of its own: the summary as JSON; in --out a CSV row per hole and method, the
 // summary, the tables, three plots and the report with each hole's images; the same numbers at one
@@ -476,10 +486,7 @@ TEST(Cli, BenchRefusesAMeshThatIsNotClosed) {
 // tables.
 TEST(Cli, BenchComparesMethodsAndWritesItsReport) {
   const fs::path dir = testing::temporary_directory("cli-bench");
-  write_mesh(testing::make_sphere(16), dir / "sphere.ply");
-  const std::string common = "bench --meshes " + (dir / "sphere.ply").string() +
-                             " --holes-per-mesh 3 --seed 4 --max-radius 6 --inpainters "
-                             "harmonic,ns --filler plane --baselines cgal-triangulate --json";
+  const std::string common = sphere_bench(dir, "cgal-triangulate") + " --json";
   const Outcome one = run(common + " --out " + (dir / "one").string());
   ASSERT_EQ(one.exit_code, 0) << one.err;
   nlohmann::json summary = nlohmann::json::parse(one.out);
@@ -599,11 +606,7 @@ TEST(Cli, BenchReportOpensInABrowserWithA3DViewPerHole) {
     GTEST_SKIP() << "chromium is not installed (scripts/install-deps.sh installs it)";
   }
   const fs::path dir = testing::temporary_directory("cli-bench-browser");
-  write_mesh(testing::make_sphere(16), dir / "sphere.ply");
-  const Outcome bench = run("bench --meshes " + (dir / "sphere.ply").string() +
-                            " --holes-per-mesh 3 --seed 4 --max-radius 6 --inpainters "
-                            "harmonic,ns --filler plane --baselines cgal-fair --out " +
-                            (dir / "out").string());
+  const Outcome bench = run(sphere_bench(dir, "cgal-fair") + " --out " + (dir / "out").string());
   ASSERT_EQ(bench.exit_code, 0) << bench.err;
   const std::string browser =
       "chromium --headless=new --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader "
@@ -628,10 +631,7 @@ TEST(Cli, BenchReportOpensInABrowserWithA3DViewPerHole) {
 // shard given twice and a shard of another run.
 TEST(Cli, BenchShardsMergeIntoTheUnshardedRun) {
   const fs::path dir = testing::temporary_directory("cli-bench-shards");
-  write_mesh(testing::make_sphere(16), dir / "sphere.ply");
-  const std::string common = "bench --meshes " + (dir / "sphere.ply").string() +
-                             " --holes-per-mesh 3 --seed 4 --max-radius 6 --inpainters "
-                             "harmonic,ns --filler plane --baselines cgal-triangulate";
+  const std::string common = sphere_bench(dir, "cgal-triangulate");
   const Outcome whole = run(common + " --json --out " + (dir / "whole").string());
   ASSERT_EQ(whole.exit_code, 0) << whole.err;
   for (const char* shard : {"0/2", "1/2"}) {

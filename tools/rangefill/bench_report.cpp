@@ -32,6 +32,14 @@ std::string fixed(double value, int digits = 2) {
   return text;
 }
 
+// A p-value: three decimals, or two significant digits below 0.001.
+std::string p_value(double p) {
+  if (std::isnan(p) || p >= 0.001) return fixed(p, 3);
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1e", p);
+  return text;
+}
+
 std::string percent(double share) {
   return fixed(100 * share, 1) + " %";
 }
@@ -202,12 +210,11 @@ std::vector<Table> tables(const BenchResults& results, const BenchSummary& summa
       {}};
   for (size_t m = 0; m < results.methods.size(); ++m) {
     const MethodSummary& s = summary.methods[m];
-    const std::string test = static_cast<int>(m) == summary.best
-                                 ? "best"
-                                 : (std::isnan(s.versus_best.p)
-                                        ? std::string("—")
-                                        : fixed(s.versus_best.p, s.versus_best.p < 0.001 ? 5 : 3)) +
-                                       " (" + std::to_string(s.versus_best.pairs) + ")";
+    const std::string test =
+        static_cast<int>(m) == summary.best
+            ? "best"
+            : (std::isnan(s.versus_best.p) ? std::string("—") : p_value(s.versus_best.p)) + " (" +
+                  std::to_string(s.versus_best.pairs) + ")";
     overview.rows.push_back(
         {results.methods[m], std::to_string(s.filled) + " / " + std::to_string(n),
          std::to_string(s.closed_meshes) + " / " + std::to_string(summary.meshes),
@@ -226,7 +233,7 @@ std::vector<Table> tables(const BenchResults& results, const BenchSummary& summa
   all.push_back(ranking_table("Effectiveness ranking by H, " +
                                   std::to_string(ranked_holes(summary, summary.overall)) +
                                   " holes some method closed" + alike_note + " (Table 3)",
-                              results.methods, summary.overall, summary.first_share_intervals));
+                              results.methods, summary.overall, summary.share_intervals[0]));
   if (results.backends >= 2) {
     const std::vector<std::string> backends(results.methods.begin(),
                                             results.methods.begin() + results.backends);
@@ -457,6 +464,15 @@ nlohmann::json interval_json(const Interval& interval) {
   return {number_or_null(interval.low), number_or_null(interval.high)};
 }
 
+// Method m's intervals of the shares of each position, first to last.
+nlohmann::json rank_share_intervals_json(const BenchSummary& summary, size_t m) {
+  nlohmann::json intervals = nlohmann::json::array();
+  for (const std::vector<Interval>& position : summary.share_intervals) {
+    intervals.push_back(interval_json(position[m]));
+  }
+  return intervals;
+}
+
 // The back-ends' ranking among themselves (null with fewer than two).
 nlohmann::json backends_json(const BenchResults& results, const BenchSummary& summary) {
   if (results.backends < 2) return nullptr;
@@ -495,8 +511,10 @@ BenchSummary summarize(const BenchResults& results, int area_classes, double tie
     if (!summary.alike[h]) different.push_back(static_cast<int>(h));
   }
   summary.overall = ranking("all", "all", all, summary.positions, methods);
-  summary.first_share_intervals =
-      bootstrap_share_intervals(summary.positions, all, static_cast<int>(methods));
+  for (size_t position = 1; position <= methods; ++position) {
+    summary.share_intervals.push_back(bootstrap_share_intervals(
+        summary.positions, all, static_cast<int>(methods), static_cast<int>(position)));
+  }
   if (results.backends >= 2) {
     std::vector<std::vector<double>> backend_errors;
     for (const std::vector<double>& row : errors) {
@@ -613,7 +631,7 @@ nlohmann::json summary_json(const BenchResults& results, const BenchSummary& sum
         {"seconds_per_hole_median", s.seconds_median},
         {"rank_shares", summary.overall.shares[m]},
         {"hausdorff_median_ci95", interval_json(s.hausdorff_median_interval)},
-        {"first_share_ci95", interval_json(summary.first_share_intervals[m])},
+        {"rank_shares_ci95", rank_share_intervals_json(summary, m)},
         {"versus_best",
          {{"method", results.methods[summary.best]},
           {"test", "Wilcoxon signed-rank, two-sided"},

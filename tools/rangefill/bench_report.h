@@ -68,7 +68,8 @@ struct BenchSummary {
   int meshes = 0;
   std::vector<MethodSummary> methods;
   int best = 0;  // the method of the lowest H median (over the holes it filled)
-  std::vector<Interval> first_share_intervals;  // per method, bootstrap 95 %, overall ranking
+  /// Bootstrap 95 % intervals of the overall ranking's shares, [position − 1][method].
+  std::vector<std::vector<Interval>> share_intervals;
   /// Per hole: every back-end filled it by the same strategy with the same patch (there are two
   /// or more); such holes are left out of the back-ends' ranking among themselves, where they
   /// would only be ties.

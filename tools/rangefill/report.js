@@ -133,7 +133,9 @@
     views += ok && show(h, hole.best) && drawn();
   });
   document.body.dataset.views = views;
-  if (data.holes.length > 0) choose(0);
+  // The hole the address names (report.html#hole-12), else the first.
+  const named = /^#hole-(\d+)$/.exec(window.location.hash);
+  if (data.holes.length > 0) choose(named && named[1] < data.holes.length ? Number(named[1]) : 0);
 
   // --- Depth images: viridis for depth, a difference from the first restoration ------------
   let coloured = 0;
