@@ -18,7 +18,11 @@ void* module_entry(const char* module, const char* entry, const void* anchor,
       (std::filesystem::path(library.dli_fname).parent_path() / module).string();
   void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
   void* symbol = handle ? dlsym(handle, entry) : nullptr;
-  if (!symbol) throw ProcessingError(what + ": cannot load " + path + ": " + dlerror());
+  if (!symbol) {
+    const char* error = dlerror();
+    throw ProcessingError(what + ": cannot load " + path + ": " +
+                          (error ? error : std::string(entry) + " is null"));
+  }
   return symbol;
 }
 

@@ -1,5 +1,7 @@
 #include "core/nearest_points.h"
 
+#include <algorithm>
+
 #include <CGAL/Orthogonal_k_neighbor_search.h>
 #include <CGAL/Search_traits_3.h>
 #include <CGAL/Search_traits_adapter.h>
@@ -32,7 +34,8 @@ NearestPoints::NearestPoints(const std::vector<Vec3>& points) : tree_(std::make_
   tree_->tree = std::make_unique<Search::Tree>(boost::counting_iterator<std::size_t>(0),
                                                boost::counting_iterator<std::size_t>(points.size()),
                                                Search::Tree::Splitter(), Traits(map));
-  tree_->tree->build();  // now, not on the first query: queries may come from several threads
+  // Built now, not on the first query: queries may come from several threads.
+  if (!points.empty()) tree_->tree->build();
 }
 
 NearestPoints::~NearestPoints() = default;
@@ -44,7 +47,8 @@ void NearestPoints::nearest(const Vec3& p, int k, std::vector<int>& indices,
   indices.clear();
   squared_distances.clear();
   if (tree_->points.empty() || k <= 0) return;
-  const Search search(*tree_->tree, Point(p.x(), p.y(), p.z()), static_cast<unsigned>(k), 0, true,
+  const auto count = static_cast<unsigned>(std::min<size_t>(k, tree_->points.size()));
+  const Search search(*tree_->tree, Point(p.x(), p.y(), p.z()), count, 0, true,
                       Search::Distance(CGAL::make_property_map(tree_->points)));
   for (const auto& [index, squared] : search) {
     indices.push_back(static_cast<int>(index));

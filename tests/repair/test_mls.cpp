@@ -75,6 +75,23 @@ TEST(Mls, ReferencePlaneOfAPlaneIsThePlane) {
   EXPECT_NEAR(normal.dot(projected->point - Vec3(1, 1, 1)), 0, 1e-9);
 }
 
+// A surface may start empty (nothing to project onto) and take its samples later: a plane's,
+// onto which a point then projects.
+TEST(Mls, AnEmptySurfaceTakesSamplesLater) {
+  MlsSurface surface({}, {});
+  EXPECT_EQ(surface.size(), 0u);
+  EXPECT_FALSE(surface.project(Vec3(0, 0, 1)));
+  std::vector<Vec3> plane;
+  for (int i = -3; i <= 3; ++i) {
+    for (int j = -3; j <= 3; ++j) plane.emplace_back(0.1 * i, 0.1 * j, 0);
+  }
+  surface.add_samples(plane, {});
+  EXPECT_EQ(surface.size(), plane.size());
+  const auto projected = surface.project(Vec3(0.05, 0.02, 0.3));
+  ASSERT_TRUE(projected);
+  EXPECT_NEAR(projected->point.z(), 0, 1e-9);
+}
+
 TEST(Mls, TooFewSamplesGiveNothing) {
   const MlsSurface surface({Vec3(0, 0, 0), Vec3(1, 0, 0)}, {});
   EXPECT_FALSE(surface.project(Vec3(0.5, 0.5, 0)));

@@ -68,7 +68,11 @@
   function show(h, m) {
     const hole = data.holes[h], method = hole.methods[m];
     current = {hole: h, method: m};
-    scene.clear ? scene.clear() : scene.remove(...scene.children);
+    scene.traverse((object) => {  // the last hole's buffers freed on the GPU
+      if (object.geometry) object.geometry.dispose();
+      if (object.material) object.material.dispose();
+    });
+    scene.remove(...scene.children);
     scene.add(camera, new THREE.AmbientLight(0xffffff, 0.45));
     scene.add(new THREE.Mesh(geometry(hole.surroundings), new THREE.MeshLambertMaterial(
         {color: 0xc8c8c8, side: THREE.DoubleSide, polygonOffset: true, polygonOffsetFactor: 1})));
