@@ -30,7 +30,7 @@ struct MlsProjection {
   Vec3 normal;  // of the fitted quadratic at the point
 };
 
-/// The samples in a kd-tree (PCL) and the two steps of the operator. Queries are const and may run
+/// The samples in a kd-tree (CGAL's) and the two steps of the operator. Queries are const and may run
 /// from several threads.
 class MlsSurface {
  public:
