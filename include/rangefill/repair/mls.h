@@ -30,8 +30,8 @@ struct MlsProjection {
   Vec3 normal;  // of the fitted quadratic at the point
 };
 
-/// The samples in a kd-tree (CGAL's) and the two steps of the operator. Queries are const and may run
-/// from several threads.
+/// The samples in a kd-tree (CGAL's) and the two steps of the operator. Queries are const and may
+/// run from several threads.
 class MlsSurface {
  public:
   /// `normals` (one per sample, or empty) only orient the reference planes consistently.
