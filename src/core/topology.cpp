@@ -32,6 +32,30 @@ void build_vertex_faces(const Mesh& mesh, MeshTopology& topology) {
   }
 }
 
+// Counts, among the half-edges upward[begin, end) of one edge, the first edges of faces (h % 3 ==
+// 0) whose face has the three vertices of an earlier face on the edge: a face on the same vertices
+// as an earlier one shares its first edge with it.
+void count_duplicated_faces(const Mesh& mesh, const std::vector<std::pair<int, int>>& upward,
+                            size_t begin, size_t end, MeshTopology& topology) {
+  if (end - begin < 2) return;
+  auto sorted_corners = [&](int face) {
+    Triangle t = mesh.triangles[face];
+    std::sort(t.begin(), t.end());
+    return t;
+  };
+  for (size_t i = begin; i < end; ++i) {
+    const int h = upward[i].second;
+    if (h % 3 != 0) continue;
+    for (size_t j = begin; j < end; ++j) {
+      const int other = halfedge_face(upward[j].second);
+      if (other < halfedge_face(h) && sorted_corners(other) == sorted_corners(halfedge_face(h))) {
+        ++topology.duplicated_face_count;
+        break;
+      }
+    }
+  }
+}
+
 // Groups half-edges into undirected edges, ordered by (lower vertex, higher vertex, half-edge),
 // and pairs opposites. The half-edges of the edges whose lower end is v are among v's faces.
 void build_edges(const Mesh& mesh, MeshTopology& topology) {
@@ -65,6 +89,7 @@ void build_edges(const Mesh& mesh, MeshTopology& topology) {
         topology.halfedge_edge[upward[i].second] = edge;
         topology.edge_halfedges.push_back(upward[i].second);
       }
+      count_duplicated_faces(mesh, upward, begin, end, topology);
       if (end - begin == 2) {
         const int a = upward[begin].second, b = upward[begin + 1].second;
         if (source(a) == target(b)) {
@@ -225,21 +250,8 @@ MeshDefects find_defects(const Mesh& mesh, const MeshTopology& topology) {
   defects.nonmanifold_edges = topology.nonmanifold_edge_count;
   defects.misoriented_edges = topology.misoriented_edge_count;
   defects.nonmanifold_vertices = static_cast<int>(topology.nonmanifold_vertices.size());
-  auto sorted_corners = [&](int face) {
-    Triangle t = mesh.triangles[face];
-    std::sort(t.begin(), t.end());
-    return t;
-  };
+  defects.duplicated_faces = topology.duplicated_face_count;
   for (int f = 0; f < mesh.face_count(); ++f) {
-    // A face on the same vertices as an earlier one shares its first edge.
-    const Edge& edge = topology.edges[topology.halfedge_edge[3 * f]];
-    for (int i = edge.first; i < edge.first + edge.count; ++i) {
-      const int other = halfedge_face(topology.edge_halfedges[i]);
-      if (other < f && sorted_corners(other) == sorted_corners(f)) {
-        ++defects.duplicated_faces;
-        break;
-      }
-    }
     if (is_degenerate(mesh, f)) ++defects.degenerate_faces;
   }
   return defects;

@@ -153,12 +153,12 @@ HoleSet find_holes(const Mesh& mesh, const MeshTopology& topology) {
       holes.open_boundary_edges += static_cast<int>(halfedges.size());
     }
   }
-  std::vector<double> component_area(topology.component_count, 0.0);
+  holes.component_areas.assign(topology.component_count, 0.0);
   for (int f = 0; f < mesh.face_count(); ++f) {
-    component_area[topology.face_component[f]] += 0.5 * triangle_cross(mesh, f).norm();
+    holes.component_areas[topology.face_component[f]] += 0.5 * triangle_cross(mesh, f).norm();
   }
   for (BoundaryLoop& loop : holes.loops) {
-    const double total = component_area[loop.component];
+    const double total = holes.component_areas[loop.component];
     loop.area_share = total > 0 ? loop.area / total : 0;
   }
   return holes;

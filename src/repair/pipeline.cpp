@@ -223,25 +223,74 @@ std::vector<std::optional<Fill>> fill_pass(const SurfaceContext& surface,
   return fills;
 }
 
-// Every loop of the repaired mesh: left open by the options, or to be filled and not.
+// Loop `loop` of the repaired mesh, open: as the options left it (their reason, what they
+// judged), or failed, with the hole its vertices came from and its `area_share` in the result.
+OpenLoop open_loop(const Mesh& mesh, const BoundaryLoop& loop, int id, double area_share,
+                   const RepairState& state) {
+  OpenLoop open{id,        -1,         static_cast<int>(loop.vertices.size()),
+                loop.area, area_share, OpenReason::failed};
+  const auto known = state.left_open.find(sorted_vertices(loop));
+  if (known != state.left_open.end()) {
+    open = known->second;
+    open.id = id;
+    return open;
+  }
+  for (int v : loop.vertices) {
+    const auto origin = state.hole_of_vertex.find(v);
+    open.hole = origin != state.hole_of_vertex.end() ? origin->second : mesh.vertex_hole[v];
+    if (open.hole != kOriginal) break;
+  }
+  return open;
+}
+
+// Every loop of the repaired mesh, found again in its whole topology.
 std::vector<OpenLoop> open_loops_of(const Mesh& mesh, const RepairState& state) {
   std::vector<OpenLoop> open_loops;
   for (const BoundaryLoop& loop : find_holes(mesh, build_topology(mesh)).loops) {
-    OpenLoop open{
-        loop.id,           -1, static_cast<int>(loop.vertices.size()), loop.area, loop.area_share,
-        OpenReason::failed};
-    const auto known = state.left_open.find(sorted_vertices(loop));
-    if (known != state.left_open.end()) {
-      open = known->second;
-      open.id = loop.id;
-    } else {
-      for (int v : loop.vertices) {
-        const auto origin = state.hole_of_vertex.find(v);
-        open.hole = origin != state.hole_of_vertex.end() ? origin->second : mesh.vertex_hole[v];
-        if (open.hole != kOriginal) break;
-      }
-    }
-    open_loops.push_back(open);
+    open_loops.push_back(open_loop(mesh, loop, loop.id, loop.area_share, state));
+  }
+  return open_loops;
+}
+
+// Whether the loops of the mesh after the last pass follow from that pass's: each fill merged
+// closed its own loop and no loop touches another (a pinch) or runs into a non-manifold edge.
+bool loops_follow_from_pass(const HoleSet& holes, bool next_pass) {
+  return !next_pass && holes.pinched_vertices.empty() && holes.open_boundary_edges == 0;
+}
+
+double fill_area(const Mesh& mesh, const Fill& fill) {
+  const int boundary_size = static_cast<int>(fill.boundary.size());
+  const auto position = [&](int v) -> const Vec3& {
+    return v < boundary_size ? mesh.positions[fill.boundary[v]] : fill.points[v - boundary_size];
+  };
+  double area = 0;
+  for (const Triangle& t : fill.triangles) {
+    area += 0.5 * (position(t[1]) - position(t[0])).cross(position(t[2]) - position(t[0])).norm();
+  }
+  return area;
+}
+
+// Every loop of the repaired mesh when loops_follow_from_pass: the last pass's loops but those
+// its fills closed, in their order (find_holes numbers loops by their first half-edge, which faces
+// appended at other loops leave alone), each component's area grown by its fills'. The whole
+// mesh's topology is not built again.
+std::vector<OpenLoop> open_loops_after_pass(const Mesh& mesh, const HoleSet& holes,
+                                            const std::vector<const BoundaryLoop*>& loops,
+                                            const std::vector<std::optional<Fill>>& fills,
+                                            const RepairState& state) {
+  std::vector<double> component_areas = holes.component_areas;
+  std::set<int> closed;
+  for (size_t i = 0; i < loops.size(); ++i) {
+    if (!fills[i]) continue;
+    closed.insert(loops[i]->id);
+    component_areas[loops[i]->component] += fill_area(mesh, *fills[i]);
+  }
+  std::vector<OpenLoop> open_loops;
+  for (const BoundaryLoop& loop : holes.loops) {
+    if (closed.count(loop.id)) continue;
+    const double total = component_areas[loop.component];
+    open_loops.push_back(open_loop(mesh, loop, static_cast<int>(open_loops.size()),
+                                   total > 0 ? loop.area / total : 0, state));
   }
   return open_loops;
 }
@@ -292,8 +341,12 @@ bool merge_pass(const std::vector<const BoundaryLoop*>& loops,
 }  // namespace
 
 RepairResult repair(const Mesh& input, const RepairOptions& options) {
+  return repair(Mesh(input), options);
+}
+
+RepairResult repair(Mesh&& input, const RepairOptions& options) {
   RepairResult result;
-  result.mesh = input;
+  result.mesh = std::move(input);
   Mesh& mesh = result.mesh;
   const std::unique_ptr<Inpainter> inpainter =
       make_inpainter(options.inpainter, options.inpainting);
@@ -319,15 +372,16 @@ RepairResult repair(const Mesh& input, const RepairOptions& options) {
     }
     const std::vector<const BoundaryLoop*> chosen =
         choose_loops(surface.holes, pass, options, state);
-    if (chosen.empty()) break;
     std::vector<HoleReport> reports = reports_for(chosen, pass, state);
     const std::vector<std::optional<Fill>> fills =
         fill_pass(surface, chosen, *inpainter, options, pass == options.passes - 1, state, reports);
     const bool next_pass = merge_pass(chosen, fills, reports, state, result);
     state.next_id += static_cast<int>(surface.holes.loops.size());
-    if (!next_pass)
-      break;  // the next pass would find no loop to choose (the whole mesh's topology
-              // is not built again to learn that)
+    if (loops_follow_from_pass(surface.holes, next_pass)) {
+      result.open_loops = open_loops_after_pass(mesh, surface.holes, chosen, fills, state);
+      return result;
+    }
+    if (!next_pass) break;  // the next pass would find no loop to choose
   }
   result.open_loops = open_loops_of(mesh, state);
   return result;

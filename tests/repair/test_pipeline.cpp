@@ -580,6 +580,22 @@ std::vector<int> open_for(const RepairResult& result, OpenReason reason) {
   return ids;
 }
 
+// The open loops of `result` are those find_holes finds in its mesh, by id (the repair finds them
+// again only when the last pass's loops do not tell).
+void expect_open_loops_found_again(const RepairResult& result) {
+  const HoleSet holes = find_holes(result.mesh, build_topology(result.mesh));
+  ASSERT_EQ(result.open_loops.size(), holes.loops.size());
+  for (size_t i = 0; i < holes.loops.size(); ++i) {
+    const OpenLoop& open = result.open_loops[i];
+    const BoundaryLoop& loop = holes.loops[i];
+    EXPECT_EQ(open.id, loop.id);
+    EXPECT_EQ(open.edges, static_cast<int>(loop.vertices.size()));
+    EXPECT_DOUBLE_EQ(open.area, loop.area);
+    // Judged in the input for a loop the options left open.
+    if (open.reason == OpenReason::failed) EXPECT_NEAR(open.area_share, loop.area_share, 1e-12);
+  }
+}
+
 // Each sheet's outer loop would be filled by more than the sheet (shares 1.19 and 1.15), its holes
 // by 4–15 % of it: by default the outer loops are borders, left open.
 TEST(OpenSurfaces, LoopsWhoseFillWouldCoverMuchOfTheirComponentAreBorders) {
@@ -604,6 +620,7 @@ TEST(OpenSurfaces, LoopsWhoseFillWouldCoverMuchOfTheirComponentAreBorders) {
   EXPECT_EQ(result.open_count(OpenReason::failed), 0);
   EXPECT_EQ(check_manifold(result.mesh).boundary_loops, 2);
   testing::expect_input_preserved(sheets, result.mesh);
+  expect_open_loops_found_again(result);
 
   // With no borders every loop is attempted; but any fill of a flat sheet's border would lie on
   // the sheet itself: both are refused and reported, the holes still filled.
@@ -620,6 +637,7 @@ TEST(OpenSurfaces, LoopsWhoseFillWouldCoverMuchOfTheirComponentAreBorders) {
     }
   }
   EXPECT_EQ(all.open_count(OpenReason::failed), 2);
+  expect_open_loops_found_again(all);  // shares of the borders in their filled sheets
   EXPECT_EQ(all.mesh.triangles, result.mesh.triangles);
 }
 
@@ -668,6 +686,7 @@ TEST(OpenSurfaces, ASphereCutInHalfKeepsOneBorderPerHalfAndFillsItsHoles) {
   const RepairResult result = repair(halves);
   expect_one_open_loop_per_component(result, OpenReason::border, 2);
   for (const OpenLoop& loop : result.open_loops) EXPECT_NEAR(loop.area_share, 0.5, 0.1);
+  expect_open_loops_found_again(result);
   EXPECT_EQ(result.holes.size(), 3u);
   for (const HoleReport& hole : result.holes) EXPECT_TRUE(hole.filled) << hole.failure;
   testing::expect_input_preserved(halves, result.mesh);
@@ -744,6 +763,7 @@ TEST(DefectiveInput, HolesAwayFromNonManifoldElementsAreFilled) {
   EXPECT_EQ(result.open_loops[0].reason, OpenReason::failed);
   EXPECT_EQ(result.open_loops[0].hole, top);
   testing::expect_input_preserved(mesh, result.mesh);
+  expect_open_loops_found_again(result);
 
   const MeshTopology topology = build_topology(result.mesh);
   std::set<int> nonmanifold(topology.nonmanifold_vertices.begin(),

@@ -1,7 +1,5 @@
 // rangefill: one binary, one sub-command per job. Exit codes: 0 ok, 2 usage error, 3 unreadable or
 // invalid input, 4 processing failure, 5 partial result. Errors are one line on stderr.
-#include <malloc.h>
-
 #include <cstdlib>
 #include <iostream>
 
@@ -11,11 +9,6 @@
 int main(int argc, char** argv) {
   using namespace rangefill;
   cli::handle_interrupts();  // before any thread exists
-  // Freed blocks stay with the process for the next allocation: a command allocates and frees
-  // images and meshes of the same sizes again and again, and glibc would return each to the
-  // system (a block of 128 KB or more is mapped on its own) and fault its pages in anew.
-  mallopt(M_MMAP_THRESHOLD, 256 << 20);
-  mallopt(M_TRIM_THRESHOLD, 512 << 20);
   CLI::App app{"rangefill: fill the holes of 3D scans by range-image inpainting", "rangefill"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "rangefill 0.1.0");

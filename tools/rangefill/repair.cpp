@@ -193,7 +193,7 @@ struct FileRepair {
 // and the input's defects and border loops said on stderr.
 FileRepair repair_file(RepairCommand& command) {
   check_arguments(command);
-  const Mesh mesh = load_input(command);
+  Mesh mesh = load_input(command);
 
   const bool progress = stderr_is_terminal();
   int done = 0;
@@ -215,7 +215,8 @@ FileRepair repair_file(RepairCommand& command) {
 
   const auto start = std::chrono::steady_clock::now();
   FileRepair repaired;
-  repaired.result = naming_the_input(command.input, [&] { return repair(mesh, command.options); });
+  repaired.result =
+      naming_the_input(command.input, [&] { return repair(std::move(mesh), command.options); });
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   command.options.on_hole = nullptr;

@@ -43,6 +43,7 @@ struct MeshTopology {
   std::vector<int> nonmanifold_vertices;  // vertices whose faces form more than one fan
   int nonmanifold_edge_count = 0;         // edges with more than two faces
   int misoriented_edge_count = 0;         // edges whose two faces disagree in orientation
+  int duplicated_face_count = 0;          // faces on the same three vertices as an earlier one
   int component_count = 0;                // connected components of faces (through edges)
   std::vector<int> face_component;        // per face, in [0, component_count)
 
