@@ -336,10 +336,7 @@ cv::Mat lbfgs_map(const FoeModel& model, const LaplacianPolynomial& polynomial, 
   const Unknowns unknowns(mask);
   const int n = static_cast<int>(unknowns.pixels.size());
   const LaplaceSystem laplace = laplace_system(x, mask);
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> laplacian(laplace.matrix);
-  if (laplacian.info() != Eigen::Success) {
-    throw ProcessingError("foe: the preconditioner could not be factorised");
-  }
+  const LaplaceFactor laplacian(laplace.matrix, mask);
   Eigen::SparseMatrix<double> shifted = polynomial.t * laplace.matrix;
   for (int k = 0; k < n; ++k) shifted.coeffRef(k, k) += 1;
   const ChebyshevInverse one_plus_t_laplacian(shifted, 1 + 8 * polynomial.t);

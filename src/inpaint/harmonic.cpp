@@ -1,7 +1,8 @@
 #include "rangefill/inpaint/harmonic.h"
 
+#include <algorithm>
+
 #include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
 
 #include "rangefill/core/errors.h"
 
@@ -43,6 +44,57 @@ LaplaceSystem laplace_system(const cv::Mat& values, const cv::Mat& mask) {
   return system;
 }
 
+namespace {
+
+// Places the pixels of points[begin, end) in nested-dissection order: the pixels on the cut (the
+// middle column of their bounding box when it is wider than tall, else its middle row) after the
+// two halves it parts, between which no pixel has a 4-neighbour.
+void order_by_dissection(std::vector<cv::Point>& points, size_t begin, size_t end) {
+  constexpr size_t kSmallest = 16;  // a part this small keeps row-major order
+  if (end - begin <= kSmallest) return;
+  const auto first = points.begin() + static_cast<std::ptrdiff_t>(begin);
+  const auto last = points.begin() + static_cast<std::ptrdiff_t>(end);
+  cv::Point low = *first, high = *first;
+  for (auto p = first; p != last; ++p) {
+    low = {std::min(low.x, p->x), std::min(low.y, p->y)};
+    high = {std::max(high.x, p->x), std::max(high.y, p->y)};
+  }
+  const bool across_x = high.x - low.x >= high.y - low.y;
+  const int cut = across_x ? (low.x + high.x) / 2 : (low.y + high.y) / 2;
+  const auto coordinate = [&](const cv::Point& p) { return across_x ? p.x : p.y; };
+  const auto second_half =
+      std::stable_partition(first, last, [&](const cv::Point& p) { return coordinate(p) < cut; });
+  const auto on_cut = std::stable_partition(
+      second_half, last, [&](const cv::Point& p) { return coordinate(p) > cut; });
+  if (second_half == first && on_cut == last) return;  // a line: nothing to cut
+  order_by_dissection(points, begin, static_cast<size_t>(second_half - points.begin()));
+  order_by_dissection(points, static_cast<size_t>(second_half - points.begin()),
+                      static_cast<size_t>(on_cut - points.begin()));
+}
+
+}  // namespace
+
+LaplaceFactor::LaplaceFactor(const Eigen::SparseMatrix<double>& matrix, const cv::Mat& mask)
+    : order_(static_cast<int>(matrix.rows())) {
+  std::vector<cv::Point> points;  // row-major, the order of the system
+  cv::findNonZero(mask, points);
+  CV_Assert(static_cast<Eigen::Index>(points.size()) == matrix.rows());
+  cv::Mat index(mask.size(), CV_32S);
+  for (size_t i = 0; i < points.size(); ++i) index.at<int>(points[i]) = static_cast<int>(i);
+  order_by_dissection(points, 0, points.size());
+  for (size_t k = 0; k < points.size(); ++k) order_.indices()[index.at<int>(points[k])] = k;
+  Eigen::SparseMatrix<double> permuted;
+  permuted = matrix.twistedBy(order_);
+  ldlt_.compute(permuted);
+  if (ldlt_.info() != Eigen::Success) {
+    throw ProcessingError("the Laplace system could not be factorised");
+  }
+}
+
+Eigen::VectorXd LaplaceFactor::solve(const Eigen::VectorXd& b) const {
+  return order_.transpose() * ldlt_.solve(order_ * b).eval();
+}
+
 void HarmonicInpainter::inpaint(cv::InputArray depth_in, cv::InputArray mask_in,
                                 cv::OutputArray out) const {
   const int masked = start_inpainting(depth_in, mask_in, out, name());
@@ -52,11 +104,7 @@ void HarmonicInpainter::inpaint(cv::InputArray depth_in, cv::InputArray mask_in,
   cv::Mat depth;
   depth_in.getMat().convertTo(depth, CV_64F);
   const LaplaceSystem system = laplace_system(depth, mask);
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(system.matrix);
-  if (solver.info() != Eigen::Success) {
-    throw ProcessingError("harmonic: the Laplace system could not be factorised");
-  }
-  const Eigen::VectorXd solution = solver.solve(system.rhs);
+  const Eigen::VectorXd solution = LaplaceFactor(system.matrix, mask).solve(system.rhs);
   std::vector<cv::Point> unknowns;  // row-major, the order of the system
   cv::findNonZero(mask, unknowns);
   cv::Mat result = out.getMat();
