@@ -3,9 +3,20 @@
 #include <algorithm>
 #include <numeric>
 
+#include "rangefill/core/parallel.h"
+
 namespace rangefill {
 
 namespace {
+
+// Ranges of vertices whose edges and fans are found in parallel: a fixed count, so that the work
+// is split the same way at any thread count; on one thread below kParallelFaces faces.
+constexpr int kTopologyRanges = 32;
+constexpr int kParallelFaces = 100000;
+
+int topology_threads(const Mesh& mesh) {
+  return mesh.face_count() >= kParallelFaces ? hardware_threads() : 1;
+}
 
 int find_root(std::vector<int>& parent, int x) {
   while (parent[x] != x) {
@@ -32,44 +43,49 @@ void build_vertex_faces(const Mesh& mesh, MeshTopology& topology) {
   }
 }
 
-// Counts, among the half-edges upward[begin, end) of one edge, the first edges of faces (h % 3 ==
-// 0) whose face has the three vertices of an earlier face on the edge: a face on the same vertices
-// as an earlier one shares its first edge with it.
-void count_duplicated_faces(const Mesh& mesh, const std::vector<std::pair<int, int>>& upward,
-                            size_t begin, size_t end, MeshTopology& topology) {
-  if (end - begin < 2) return;
+// The faces, among those on the half-edges upward[begin, end) of one edge, with the three
+// vertices of an earlier face on it, each counted on its first edge (h % 3 == 0): a face on the
+// same vertices as an earlier one shares its first edge with it.
+int duplicated_faces(const Mesh& mesh, const std::vector<std::pair<int, int>>& upward, size_t begin,
+                     size_t end) {
+  if (end - begin < 2) return 0;
   auto sorted_corners = [&](int face) {
     Triangle t = mesh.triangles[face];
     std::sort(t.begin(), t.end());
     return t;
   };
+  int count = 0;
   for (size_t i = begin; i < end; ++i) {
     const int h = upward[i].second;
     if (h % 3 != 0) continue;
     for (size_t j = begin; j < end; ++j) {
       const int other = halfedge_face(upward[j].second);
       if (other < halfedge_face(h) && sorted_corners(other) == sorted_corners(halfedge_face(h))) {
-        ++topology.duplicated_face_count;
+        ++count;
         break;
       }
     }
   }
+  return count;
 }
 
-// Groups half-edges into undirected edges, ordered by (lower vertex, higher vertex, half-edge),
-// and pairs opposites. The half-edges of the edges whose lower end is v are among v's faces.
-void build_edges(const Mesh& mesh, MeshTopology& topology) {
-  const int halfedge_count = 3 * mesh.face_count();
+// The edges whose lower end lies in a range of vertices, built apart from the others.
+struct EdgesOfRange {
+  std::vector<Edge> edges;  // Edge::first into edge_halfedges below
+  std::vector<int> edge_halfedges;
+  int nonmanifold_edges = 0, misoriented_edges = 0, duplicated_faces = 0;
+};
+
+// The edges whose lower end v is in [first_vertex, last_vertex), ordered by (v, higher vertex,
+// half-edge); pairs their opposites in `topology` and gives each of their half-edges the edge's
+// index in the range. The half-edges of the edges whose lower end is v are among v's faces.
+EdgesOfRange build_edges_of_range(const Mesh& mesh, MeshTopology& topology, int first_vertex,
+                                  int last_vertex) {
   auto source = [&](int h) { return topology.halfedge_source(mesh, h); };
   auto target = [&](int h) { return topology.halfedge_target(mesh, h); };
-  topology.opposite.assign(halfedge_count, kBoundary);
-  topology.halfedge_edge.assign(halfedge_count, -1);
-  topology.edges.clear();
-  topology.edges.reserve(halfedge_count / 2 + 1);  // a closed mesh's count
-  topology.edge_halfedges.clear();
-  topology.edge_halfedges.reserve(halfedge_count);
+  EdgesOfRange range;
   std::vector<std::pair<int, int>> upward;  // (higher vertex, half-edge) of the edges leaving v up
-  for (int v = 0; v < mesh.vertex_count(); ++v) {
+  for (int v = first_vertex; v < last_vertex; ++v) {
     upward.clear();
     for (int i = topology.faces_of_vertex_begin(v); i < topology.faces_of_vertex_end(v); ++i) {
       const int face = topology.vertex_faces[i];
@@ -82,14 +98,14 @@ void build_edges(const Mesh& mesh, MeshTopology& topology) {
     for (size_t begin = 0; begin < upward.size();) {
       size_t end = begin + 1;
       while (end < upward.size() && upward[end].first == upward[begin].first) ++end;
-      const int edge = static_cast<int>(topology.edges.size());
-      const int first = static_cast<int>(topology.edge_halfedges.size());
-      topology.edges.push_back({v, upward[begin].first, first, static_cast<int>(end - begin)});
+      const int edge = static_cast<int>(range.edges.size());
+      const int first = static_cast<int>(range.edge_halfedges.size());
+      range.edges.push_back({v, upward[begin].first, first, static_cast<int>(end - begin)});
       for (size_t i = begin; i < end; ++i) {
         topology.halfedge_edge[upward[i].second] = edge;
-        topology.edge_halfedges.push_back(upward[i].second);
+        range.edge_halfedges.push_back(upward[i].second);
       }
-      count_duplicated_faces(mesh, upward, begin, end, topology);
+      range.duplicated_faces += duplicated_faces(mesh, upward, begin, end);
       if (end - begin == 2) {
         const int a = upward[begin].second, b = upward[begin + 1].second;
         if (source(a) == target(b)) {
@@ -97,15 +113,59 @@ void build_edges(const Mesh& mesh, MeshTopology& topology) {
           topology.opposite[b] = a;
         } else {
           topology.opposite[a] = topology.opposite[b] = kNonManifold;
-          ++topology.misoriented_edge_count;
+          ++range.misoriented_edges;
         }
       } else if (end - begin > 2) {
         for (size_t i = begin; i < end; ++i) topology.opposite[upward[i].second] = kNonManifold;
-        ++topology.nonmanifold_edge_count;
+        ++range.nonmanifold_edges;
       }
       begin = end;
     }
   }
+  return range;
+}
+
+// The vertices split into `count` ranges of about equal size: range r is [bounds[r], bounds[r+1]).
+std::vector<int> vertex_ranges(int vertex_count, int count) {
+  std::vector<int> bounds(count + 1);
+  for (int r = 0; r <= count; ++r) {
+    bounds[r] = static_cast<int>(static_cast<long long>(vertex_count) * r / count);
+  }
+  return bounds;
+}
+
+// Groups half-edges into undirected edges, ordered by (lower vertex, higher vertex, half-edge),
+// and pairs opposites: ranges of vertices in parallel, joined in order (the same at any thread
+// count).
+void build_edges(const Mesh& mesh, MeshTopology& topology) {
+  const int halfedge_count = 3 * mesh.face_count();
+  topology.opposite.assign(halfedge_count, kBoundary);
+  topology.halfedge_edge.assign(halfedge_count, -1);
+  const std::vector<int> bounds = vertex_ranges(mesh.vertex_count(), kTopologyRanges);
+  std::vector<EdgesOfRange> ranges(kTopologyRanges);
+  parallel_for(kTopologyRanges, topology_threads(mesh), [&](int r) {
+    ranges[r] = build_edges_of_range(mesh, topology, bounds[r], bounds[r + 1]);
+  });
+  std::vector<int> edge_offsets(kTopologyRanges + 1, 0), halfedge_offsets(kTopologyRanges + 1, 0);
+  for (int r = 0; r < kTopologyRanges; ++r) {
+    edge_offsets[r + 1] = edge_offsets[r] + static_cast<int>(ranges[r].edges.size());
+    halfedge_offsets[r + 1] =
+        halfedge_offsets[r] + static_cast<int>(ranges[r].edge_halfedges.size());
+    topology.nonmanifold_edge_count += ranges[r].nonmanifold_edges;
+    topology.misoriented_edge_count += ranges[r].misoriented_edges;
+    topology.duplicated_face_count += ranges[r].duplicated_faces;
+  }
+  topology.edges.resize(edge_offsets.back());
+  topology.edge_halfedges.resize(halfedge_offsets.back());
+  parallel_for(kTopologyRanges, topology_threads(mesh), [&](int r) {
+    EdgesOfRange& range = ranges[r];
+    for (int h : range.edge_halfedges) topology.halfedge_edge[h] += edge_offsets[r];
+    for (Edge& edge : range.edges) edge.first += halfedge_offsets[r];
+    std::copy(range.edges.begin(), range.edges.end(), topology.edges.begin() + edge_offsets[r]);
+    std::copy(range.edge_halfedges.begin(), range.edge_halfedges.end(),
+              topology.edge_halfedges.begin() + halfedge_offsets[r]);
+    range = EdgesOfRange();
+  });
 }
 
 // Components of faces joined through manifold edges (and misoriented or non-manifold ones).
@@ -189,11 +249,19 @@ int count_fans(const Mesh& mesh, const MeshTopology& topology, int v, std::vecto
 }
 
 // A vertex is non-manifold when its faces form more than one fan (a pinch, or faces meeting at a
-// non-manifold edge).
+// non-manifold edge). Ranges of vertices in parallel, joined in order.
 void find_nonmanifold_vertices(const Mesh& mesh, MeshTopology& topology) {
-  std::vector<int> parent;
-  for (int v = 0; v < mesh.vertex_count(); ++v) {
-    if (count_fans(mesh, topology, v, parent) > 1) topology.nonmanifold_vertices.push_back(v);
+  const std::vector<int> bounds = vertex_ranges(mesh.vertex_count(), kTopologyRanges);
+  std::vector<std::vector<int>> found(kTopologyRanges);
+  parallel_for(kTopologyRanges, topology_threads(mesh), [&](int r) {
+    std::vector<int> parent;
+    for (int v = bounds[r]; v < bounds[r + 1]; ++v) {
+      if (count_fans(mesh, topology, v, parent) > 1) found[r].push_back(v);
+    }
+  });
+  for (const std::vector<int>& vertices : found) {
+    topology.nonmanifold_vertices.insert(topology.nonmanifold_vertices.end(), vertices.begin(),
+                                         vertices.end());
   }
 }
 

@@ -1,5 +1,6 @@
 // Adjacency of a triangle mesh: half-edges, their opposites, vertex-to-face incidence and edges.
-// Built in O(V + E) by a two-pass counting sort of the edges; no hashing, no per-vertex containers.
+// Built in O(V + E): each edge grouped at its lower vertex from that vertex's faces, ranges of
+// vertices in parallel for a large mesh (the same result at any thread count); no hashing.
 #pragma once
 
 #include <string>
