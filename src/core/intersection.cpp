@@ -18,7 +18,9 @@ using namespace cgal_triangles;
 // faces too large for grid k − 1, each in the cell of its bounding box's low corner. A grid hashes
 // its cells into buckets, filled by a counting sort. A query reads, in each grid, the cells its
 // own box meets and those one cell lower, so its cost follows the faces near it, not the mesh,
-// whatever the spread of the face sizes.
+// whatever the spread of the face sizes. With regions, a coarse grid over the mesh (the cover)
+// marks the cells the regions meet; the grids hold the faces whose box meets a marked cell, which
+// are all the faces a query can meet when every cell of its box is marked.
 struct IntersectionIndex::Tree {
   struct Grid {
     double cell = 1;
@@ -29,30 +31,41 @@ struct IntersectionIndex::Tree {
     }
   };
   static constexpr long long kAxisCells = 1 << 21;
+  static constexpr long long kCoverAxisCells = 128;
   using Cells = std::array<std::array<long long, 2>, 3>;  // first and last cell on each axis
 
-  std::vector<Vec3> positions;
-  std::vector<Triangle> corners;
+  const Mesh& mesh;
+  std::vector<std::array<Vec3, 2>> regions;  // none: every face in the grids
   std::once_flag built;  // the grids are built on the first query, by whichever thread asks
   Vec3 origin = Vec3::Zero();
   std::vector<Grid> grids;
+  Vec3 cover_origin = Vec3::Zero();
+  double cover_cell = 1;
+  std::vector<std::uint8_t> cover;  // per cell of the cover, row-major: a region meets it
+
+  Tree(const Mesh& indexed_mesh, std::vector<std::array<Vec3, 2>> near)
+      : mesh(indexed_mesh), regions(std::move(near)) {}
 
   std::pair<Vec3, Vec3> box(int face) const {
-    const Triangle& t = corners[face];
-    const Vec3 &p = positions[t[0]], &q = positions[t[1]], &r = positions[t[2]];
+    const Triangle& t = mesh.triangles[face];
+    const Vec3 &p = mesh.positions[t[0]], &q = mesh.positions[t[1]], &r = mesh.positions[t[2]];
     return {p.cwiseMin(q).cwiseMin(r), p.cwiseMax(q).cwiseMax(r)};
   }
-  Cells cells(const Vec3& low, const Vec3& high, double cell) const {
+  static Cells cells(const Vec3& low, const Vec3& high, const Vec3& from, double cell,
+                     long long axis_cells) {
     Cells range;
     for (int axis = 0; axis < 3; ++axis) {
       for (int side = 0; side < 2; ++side) {
-        double at = std::floor(((side ? high : low)[axis] - origin[axis]) / cell);
-        if (std::isnan(at)) at = side ? kAxisCells : 0;  // all cells
+        double at = std::floor(((side ? high : low)[axis] - from[axis]) / cell);
+        if (std::isnan(at)) at = side ? axis_cells : 0;  // all cells
         range[axis][side] =
-            static_cast<long long>(std::clamp(at, 0.0, static_cast<double>(kAxisCells - 1)));
+            static_cast<long long>(std::clamp(at, 0.0, static_cast<double>(axis_cells - 1)));
       }
     }
     return range;
+  }
+  Cells cells(const Vec3& low, const Vec3& high, double cell) const {
+    return cells(low, high, origin, cell, kAxisCells);
   }
   static long long count(const Cells& range) {
     long long n = 1;
@@ -63,46 +76,98 @@ struct IntersectionIndex::Tree {
     return static_cast<std::uint64_t>(x | y << 21 | z << 42);
   }
 
+  // Whether any (`all` false) or every (`all` true) cell of the cover that [low, high] meets is
+  // marked.
+  bool covered(const Vec3& low, const Vec3& high, bool all) const {
+    const Cells range = cells(low, high, cover_origin, cover_cell, kCoverAxisCells);
+    for (long long z = range[2][0]; z <= range[2][1]; ++z) {
+      for (long long y = range[1][0]; y <= range[1][1]; ++y) {
+        for (long long x = range[0][0]; x <= range[0][1]; ++x) {
+          if (static_cast<bool>(cover[(z * kCoverAxisCells + y) * kCoverAxisCells + x]) != all) {
+            return !all;
+          }
+        }
+      }
+    }
+    return all;
+  }
+
+  // Whether a query over [low, high] may read the grids alone.
+  bool answers(const Vec3& low, const Vec3& high) const {
+    return regions.empty() || covered(low, high, true);
+  }
+
+  // The faces the grids hold: every face, or those near the regions.
+  std::vector<int> faces_to_index() {
+    std::vector<int> faces;
+    if (regions.empty()) {
+      faces.resize(mesh.face_count());
+      std::iota(faces.begin(), faces.end(), 0);
+      return faces;
+    }
+    const auto [low, high] = bounding_box(mesh);
+    cover_origin = low;
+    cover_cell =
+        std::max((high - low).maxCoeff() / kCoverAxisCells, std::numeric_limits<double>::min());
+    cover.assign(kCoverAxisCells * kCoverAxisCells * kCoverAxisCells, 0);
+    for (const auto& [region_low, region_high] : regions) {
+      const Cells range = cells(region_low, region_high, cover_origin, cover_cell, kCoverAxisCells);
+      for (long long z = range[2][0]; z <= range[2][1]; ++z) {
+        for (long long y = range[1][0]; y <= range[1][1]; ++y) {
+          for (long long x = range[0][0]; x <= range[0][1]; ++x) {
+            cover[(z * kCoverAxisCells + y) * kCoverAxisCells + x] = 1;
+          }
+        }
+      }
+    }
+    for (int face = 0; face < mesh.face_count(); ++face) {
+      const auto [face_low, face_high] = box(face);
+      if (covered(face_low, face_high, false)) faces.push_back(face);
+    }
+    return faces;
+  }
+
   void build() {
-    const int face_count = static_cast<int>(corners.size());
+    const std::vector<int> faces = faces_to_index();
+    if (faces.empty()) return;
     Vec3 low = Vec3::Constant(std::numeric_limits<double>::max()), high = -low;
     double extent = 0;
-    std::vector<double> extents(face_count);
-    for (int face = 0; face < face_count; ++face) {
-      const auto [face_low, face_high] = box(face);
+    std::vector<double> extents(faces.size());
+    for (size_t i = 0; i < faces.size(); ++i) {
+      const auto [face_low, face_high] = box(faces[i]);
       low = low.cwiseMin(face_low);
       high = high.cwiseMax(face_high);
-      extents[face] = (face_high - face_low).maxCoeff();
-      extent += extents[face];
+      extents[i] = (face_high - face_low).maxCoeff();
+      extent += extents[i];
     }
     origin = low;
     // No more than kAxisCells cells along an axis.
     const double first_cell =
-        std::max({3 * extent / face_count, (high - low).maxCoeff() / (kAxisCells - 2),
-                  std::numeric_limits<double>::min()});
-    std::vector<std::uint8_t> levels(face_count);
+        std::max({3 * extent / static_cast<double>(faces.size()),
+                  (high - low).maxCoeff() / (kAxisCells - 2), std::numeric_limits<double>::min()});
+    std::vector<std::uint8_t> levels(faces.size());
     std::vector<int> level_sizes;
-    for (int face = 0; face < face_count; ++face) {
+    for (size_t i = 0; i < faces.size(); ++i) {
       size_t level = 0;
-      while (level < grids.size() && grids[level].cell < extents[face]) ++level;
-      while (level == grids.size() || grids[level].cell < extents[face]) {
+      while (level < grids.size() && grids[level].cell < extents[i]) ++level;
+      while (level == grids.size() || grids[level].cell < extents[i]) {
         grids.push_back({grids.empty() ? first_cell : 4 * grids.back().cell, {}, {}});
         level_sizes.push_back(0);
         level = grids.size() - 1;
       }
-      levels[face] = static_cast<std::uint8_t>(level);
+      levels[i] = static_cast<std::uint8_t>(level);
       ++level_sizes[level];
     }
     for (size_t level = 0; level < grids.size(); ++level) {
       grids[level].bucket_offsets.assign(static_cast<size_t>(level_sizes[level]) + 2, 0);
       grids[level].cells.resize(level_sizes[level]);
     }
-    std::vector<std::uint64_t> keys(face_count);
-    for (int face = 0; face < face_count; ++face) {
-      Grid& grid = grids[levels[face]];
-      const Cells at = cells(box(face).first, box(face).first, grid.cell);
-      keys[face] = key(at[0][0], at[1][0], at[2][0]);
-      ++grid.bucket_offsets[grid.bucket(keys[face]) + 1];
+    std::vector<std::uint64_t> keys(faces.size());
+    for (size_t i = 0; i < faces.size(); ++i) {
+      Grid& grid = grids[levels[i]];
+      const Cells at = cells(box(faces[i]).first, box(faces[i]).first, grid.cell);
+      keys[i] = key(at[0][0], at[1][0], at[2][0]);
+      ++grid.bucket_offsets[grid.bucket(keys[i]) + 1];
     }
     for (Grid& grid : grids) {
       std::partial_sum(grid.bucket_offsets.begin(), grid.bucket_offsets.end(),
@@ -113,15 +178,21 @@ struct IntersectionIndex::Tree {
       cursors[level].assign(grids[level].bucket_offsets.begin(),
                             grids[level].bucket_offsets.end() - 1);
     }
-    for (int face = 0; face < face_count; ++face) {
-      Grid& grid = grids[levels[face]];
-      grid.cells[cursors[levels[face]][grid.bucket(keys[face])]++] = {keys[face], face};
+    for (size_t i = 0; i < faces.size(); ++i) {
+      Grid& grid = grids[levels[i]];
+      grid.cells[cursors[levels[i]][grid.bucket(keys[i])]++] = {keys[i], faces[i]};
     }
   }
 
-  // Faces whose bounding box meets [low, high], each once, unordered.
-  std::vector<int> candidates(const Vec3& low, const Vec3& high) const {
+  // The faces the grids hold near [low, high] (each once, unordered), or every face when the
+  // grids do not answer for it.
+  std::vector<int> faces_near(const Vec3& low, const Vec3& high) const {
     std::vector<int> faces;
+    if (!answers(low, high)) {
+      faces.resize(mesh.face_count());
+      std::iota(faces.begin(), faces.end(), 0);
+      return faces;
+    }
     for (const Grid& grid : grids) {
       const Cells range = cells(low - Vec3::Constant(grid.cell), high, grid.cell);
       if (count(range) > static_cast<long long>(grid.cells.size())) {  // read them all
@@ -140,6 +211,12 @@ struct IntersectionIndex::Tree {
         }
       }
     }
+    return faces;
+  }
+
+  // Faces whose bounding box meets [low, high], each once, unordered.
+  std::vector<int> candidates(const Vec3& low, const Vec3& high) const {
+    std::vector<int> faces = faces_near(low, high);
     faces.erase(std::remove_if(faces.begin(), faces.end(),
                                [&](int face) {
                                  const auto [face_low, face_high] = box(face);
@@ -151,10 +228,11 @@ struct IntersectionIndex::Tree {
   }
 };
 
-IntersectionIndex::IntersectionIndex(const Mesh& mesh) : tree_(std::make_unique<Tree>()) {
-  tree_->positions = mesh.positions;
-  tree_->corners = mesh.triangles;
-}
+IntersectionIndex::IntersectionIndex(const Mesh& mesh)
+    : tree_(std::make_unique<Tree>(mesh, std::vector<std::array<Vec3, 2>>())) {}
+
+IntersectionIndex::IntersectionIndex(const Mesh& mesh, std::vector<std::array<Vec3, 2>> regions)
+    : tree_(std::make_unique<Tree>(mesh, std::move(regions))) {}
 
 IntersectionIndex::~IntersectionIndex() = default;
 IntersectionIndex::IntersectionIndex(IntersectionIndex&&) noexcept = default;
@@ -226,16 +304,16 @@ std::pair<std::array<bool, 3>, std::array<bool, 3>> shared_corners(const Triangl
 std::vector<int> IntersectionIndex::intersecting_faces(const Vec3& a, const Vec3& b, const Vec3& c,
                                                        const Triangle& corners) const {
   std::vector<int> faces;
-  if (tree_->corners.empty()) return faces;
+  if (tree_->mesh.triangles.empty()) return faces;
   std::call_once(tree_->built, [this] { tree_->build(); });
   const std::array<Point, 3> query = {to_point(a), to_point(b), to_point(c)};
   const CgalTriangle triangle(query[0], query[1], query[2]);
   if (triangle.is_degenerate()) return faces;
   for (const int face : tree_->candidates(a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c))) {
-    const Triangle& u = tree_->corners[face];
-    const std::array<Point, 3> other = {to_point(tree_->positions[u[0]]),
-                                        to_point(tree_->positions[u[1]]),
-                                        to_point(tree_->positions[u[2]])};
+    const Triangle& u = tree_->mesh.triangles[face];
+    const std::array<Point, 3> other = {to_point(tree_->mesh.positions[u[0]]),
+                                        to_point(tree_->mesh.positions[u[1]]),
+                                        to_point(tree_->mesh.positions[u[2]])};
     const CgalTriangle other_triangle(other[0], other[1], other[2]);
     if (other_triangle.is_degenerate()) continue;
     const auto [shared_query, shared_face] = shared_corners(corners, u);

@@ -83,6 +83,26 @@ std::vector<Strategy> strategy_chain(Filler filler, const std::string& fallbacks
   return chain;
 }
 
+namespace {
+
+// Where the fills of `holes` are to be tested against the surface: the box of each loop grown by
+// its diameter on every side (a fill that reaches farther is tested against every face).
+std::vector<std::array<Vec3, 2>> fill_regions(const Mesh& mesh, const HoleSet& holes) {
+  std::vector<std::array<Vec3, 2>> regions;
+  for (const BoundaryLoop& loop : holes.loops) {
+    Vec3 low = mesh.positions[loop.vertices[0]], high = low;
+    for (int v : loop.vertices) {
+      low = low.cwiseMin(mesh.positions[v]);
+      high = high.cwiseMax(mesh.positions[v]);
+    }
+    const Vec3 margin = Vec3::Constant((high - low).norm());
+    regions.push_back({low - margin, high + margin});
+  }
+  return regions;
+}
+
+}  // namespace
+
 SurfaceContext::SurfaceContext(const Mesh& surface_mesh, double mean_edge_length)
     : mesh(surface_mesh),
       topology(build_topology(surface_mesh)),
@@ -90,7 +110,7 @@ SurfaceContext::SurfaceContext(const Mesh& surface_mesh, double mean_edge_length
       normals(vertex_normals_from_faces(surface_mesh)),
       mean_edge(mean_edge_length > 0 ? mean_edge_length
                                      : rangefill::mean_edge_length(surface_mesh, topology)),
-      faces(surface_mesh) {}
+      faces(surface_mesh, fill_regions(surface_mesh, holes)) {}
 
 namespace {
 

@@ -2,6 +2,7 @@
 #include "rangefill/core/intersection.h"
 
 #include <numeric>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -73,6 +74,29 @@ TEST(IntersectionIndex, CountsWhatMeetsBeyondSharedCorners) {
   EXPECT_EQ(index.intersecting_faces(Vec3(20, 0, 0), Vec3(21, 0, 0), Vec3(20, 1, 0), {-1, -1, -1}),
             none);
   EXPECT_TRUE(IntersectionIndex(Mesh()).intersecting_faces(o, x, y, {-1, -1, -1}).empty());
+}
+
+// An index of the faces near a few regions answers every query as the index of every face does:
+// triangles inside a region from the grids, those beyond every region (or crossing one's edge)
+// from all the faces. Queries: triangles through the sphere's surface at random.
+TEST(IntersectionIndex, RegionsChangeTheCostNotTheAnswers) {
+  const Mesh sphere = testing::make_sphere(24);
+  const IntersectionIndex all(sphere);
+  const IntersectionIndex near(sphere, {{{Vec3(0.5, -0.3, -0.3), Vec3(1.2, 0.3, 0.3)}},
+                                        {{Vec3(-0.2, -0.2, 0.8), Vec3(0.2, 0.2, 1.2)}}});
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> coordinate(-1.2, 1.2), offset(-0.3, 0.3);
+  int meeting = 0;
+  for (int query = 0; query < 3000; ++query) {
+    const Vec3 centre(coordinate(random), coordinate(random), coordinate(random));
+    const Vec3 a = centre.normalized() + Vec3(offset(random), offset(random), offset(random));
+    const Vec3 b = a + Vec3(offset(random), offset(random), offset(random));
+    const Vec3 c = a + Vec3(offset(random), offset(random), offset(random));
+    const std::vector<int> expected = all.intersecting_faces(a, b, c, {-1, -1, -1});
+    ASSERT_EQ(near.intersecting_faces(a, b, c, {-1, -1, -1}), expected) << query;
+    meeting += !expected.empty();
+  }
+  EXPECT_GT(meeting, 1000);
 }
 
 // Two faces of a fill: one folded back onto its neighbour across their shared edge meets it.

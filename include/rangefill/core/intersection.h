@@ -10,12 +10,19 @@
 
 namespace rangefill {
 
-/// The faces of a mesh in a uniform grid for intersection queries, so that a query costs what the
-/// faces near it do. The grid is built in O(F log F) on the first query; queries may run from
-/// several threads.
+/// The faces of a mesh in uniform grids for intersection queries, so that a query costs what the
+/// faces near it do. The grids are built on the first query; queries may run from several threads.
+/// The index reads `mesh`, which must outlive it and keep its faces and their positions while it
+/// is queried.
 class IntersectionIndex {
  public:
+  /// Every face indexed: O(F) to build.
   explicit IntersectionIndex(const Mesh& mesh);
+  /// Only the faces near `regions` (boxes, low and high corners) indexed: building reads each
+  /// face's box once and grids those near the regions, so that it costs little more than a pass
+  /// over the mesh when the regions are small; a query whose box lies outside them reads every
+  /// face.
+  IntersectionIndex(const Mesh& mesh, std::vector<std::array<Vec3, 2>> regions);
   ~IntersectionIndex();
   IntersectionIndex(IntersectionIndex&&) noexcept;
   IntersectionIndex& operator=(IntersectionIndex&&) noexcept;

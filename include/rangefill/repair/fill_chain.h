@@ -145,7 +145,8 @@ struct SurfaceContext {
   HoleSet holes;
   std::vector<Vec3> normals;  // area-weighted, from the faces
   double mean_edge;           // d_m
-  IntersectionIndex faces;    // for refusing fills that would cut through the surface
+  IntersectionIndex
+      faces;  // for refusing fills that would cut through the surface (near the loops)
 };
 
 /// Fills `hole` by the first strategy of options.strategies that gives a fill; nullopt when none
