@@ -9,6 +9,7 @@
 #include <set>
 
 #include "core/cgal_triangles.h"
+#include "rangefill/core/parallel.h"
 
 namespace rangefill {
 
@@ -120,10 +121,15 @@ struct IntersectionIndex::Tree {
         }
       }
     }
-    for (int face = 0; face < mesh.face_count(); ++face) {
-      const auto [face_low, face_high] = box(face);
-      if (covered(face_low, face_high, false)) faces.push_back(face);
-    }
+    const int face_count = mesh.face_count();
+    std::vector<std::vector<int>> found(kMeshRanges);
+    parallel_for(kMeshRanges, mesh_pass_threads(face_count), [&](int r) {
+      for (int face = range_begin(face_count, r); face < range_begin(face_count, r + 1); ++face) {
+        const auto [face_low, face_high] = box(face);
+        if (covered(face_low, face_high, false)) found[r].push_back(face);
+      }
+    });
+    for (const std::vector<int>& near : found) faces.insert(faces.end(), near.begin(), near.end());
     return faces;
   }
 

@@ -9,15 +9,6 @@ namespace rangefill {
 
 namespace {
 
-// Ranges of vertices whose edges and fans are found in parallel: a fixed count, so that the work
-// is split the same way at any thread count; on one thread below kParallelFaces faces.
-constexpr int kTopologyRanges = 32;
-constexpr int kParallelFaces = 100000;
-
-int topology_threads(const Mesh& mesh) {
-  return mesh.face_count() >= kParallelFaces ? hardware_threads() : 1;
-}
-
 int find_root(std::vector<int>& parent, int x) {
   while (parent[x] != x) {
     parent[x] = parent[parent[x]];
@@ -125,15 +116,6 @@ EdgesOfRange build_edges_of_range(const Mesh& mesh, MeshTopology& topology, int 
   return range;
 }
 
-// The vertices split into `count` ranges of about equal size: range r is [bounds[r], bounds[r+1]).
-std::vector<int> vertex_ranges(int vertex_count, int count) {
-  std::vector<int> bounds(count + 1);
-  for (int r = 0; r <= count; ++r) {
-    bounds[r] = static_cast<int>(static_cast<long long>(vertex_count) * r / count);
-  }
-  return bounds;
-}
-
 // Groups half-edges into undirected edges, ordered by (lower vertex, higher vertex, half-edge),
 // and pairs opposites: ranges of vertices in parallel, joined in order (the same at any thread
 // count).
@@ -141,13 +123,14 @@ void build_edges(const Mesh& mesh, MeshTopology& topology) {
   const int halfedge_count = 3 * mesh.face_count();
   topology.opposite.assign(halfedge_count, kBoundary);
   topology.halfedge_edge.assign(halfedge_count, -1);
-  const std::vector<int> bounds = vertex_ranges(mesh.vertex_count(), kTopologyRanges);
-  std::vector<EdgesOfRange> ranges(kTopologyRanges);
-  parallel_for(kTopologyRanges, topology_threads(mesh), [&](int r) {
-    ranges[r] = build_edges_of_range(mesh, topology, bounds[r], bounds[r + 1]);
+  const int vertices = mesh.vertex_count();
+  std::vector<EdgesOfRange> ranges(kMeshRanges);
+  parallel_for(kMeshRanges, mesh_pass_threads(mesh.face_count()), [&](int r) {
+    ranges[r] = build_edges_of_range(mesh, topology, range_begin(vertices, r),
+                                     range_begin(vertices, r + 1));
   });
-  std::vector<int> edge_offsets(kTopologyRanges + 1, 0), halfedge_offsets(kTopologyRanges + 1, 0);
-  for (int r = 0; r < kTopologyRanges; ++r) {
+  std::vector<int> edge_offsets(kMeshRanges + 1, 0), halfedge_offsets(kMeshRanges + 1, 0);
+  for (int r = 0; r < kMeshRanges; ++r) {
     edge_offsets[r + 1] = edge_offsets[r] + static_cast<int>(ranges[r].edges.size());
     halfedge_offsets[r + 1] =
         halfedge_offsets[r] + static_cast<int>(ranges[r].edge_halfedges.size());
@@ -157,7 +140,7 @@ void build_edges(const Mesh& mesh, MeshTopology& topology) {
   }
   topology.edges.resize(edge_offsets.back());
   topology.edge_halfedges.resize(halfedge_offsets.back());
-  parallel_for(kTopologyRanges, topology_threads(mesh), [&](int r) {
+  parallel_for(kMeshRanges, mesh_pass_threads(mesh.face_count()), [&](int r) {
     EdgesOfRange& range = ranges[r];
     for (int h : range.edge_halfedges) topology.halfedge_edge[h] += edge_offsets[r];
     for (Edge& edge : range.edges) edge.first += halfedge_offsets[r];
@@ -251,11 +234,11 @@ int count_fans(const Mesh& mesh, const MeshTopology& topology, int v, std::vecto
 // A vertex is non-manifold when its faces form more than one fan (a pinch, or faces meeting at a
 // non-manifold edge). Ranges of vertices in parallel, joined in order.
 void find_nonmanifold_vertices(const Mesh& mesh, MeshTopology& topology) {
-  const std::vector<int> bounds = vertex_ranges(mesh.vertex_count(), kTopologyRanges);
-  std::vector<std::vector<int>> found(kTopologyRanges);
-  parallel_for(kTopologyRanges, topology_threads(mesh), [&](int r) {
+  const int vertices = mesh.vertex_count();
+  std::vector<std::vector<int>> found(kMeshRanges);
+  parallel_for(kMeshRanges, mesh_pass_threads(mesh.face_count()), [&](int r) {
     std::vector<int> parent;
-    for (int v = bounds[r]; v < bounds[r + 1]; ++v) {
+    for (int v = range_begin(vertices, r); v < range_begin(vertices, r + 1); ++v) {
       if (count_fans(mesh, topology, v, parent) > 1) found[r].push_back(v);
     }
   });
@@ -319,9 +302,14 @@ MeshDefects find_defects(const Mesh& mesh, const MeshTopology& topology) {
   defects.misoriented_edges = topology.misoriented_edge_count;
   defects.nonmanifold_vertices = static_cast<int>(topology.nonmanifold_vertices.size());
   defects.duplicated_faces = topology.duplicated_face_count;
-  for (int f = 0; f < mesh.face_count(); ++f) {
-    if (is_degenerate(mesh, f)) ++defects.degenerate_faces;
-  }
+  const int faces = mesh.face_count();
+  std::vector<int> degenerate(kMeshRanges, 0);
+  parallel_for(kMeshRanges, mesh_pass_threads(faces), [&](int r) {
+    for (int f = range_begin(faces, r); f < range_begin(faces, r + 1); ++f) {
+      degenerate[r] += is_degenerate(mesh, f);
+    }
+  });
+  defects.degenerate_faces = std::accumulate(degenerate.begin(), degenerate.end(), 0);
   return defects;
 }
 

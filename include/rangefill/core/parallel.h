@@ -51,4 +51,20 @@ void parallel_for(int count, int threads, Task task) {
   if (failure) std::rethrow_exception(failure);
 }
 
+/// A pass over the elements of a mesh split into this many ranges (range_begin), whatever the
+/// thread count, so that results joined in range order are the same at any thread count.
+inline constexpr int kMeshRanges = 32;
+
+/// The threads for a pass over `elements` elements of a mesh: one below 100 000, where starting
+/// threads costs more than it saves, else hardware_threads().
+inline int mesh_pass_threads(long long elements) {
+  return elements >= 100000 ? hardware_threads() : 1;
+}
+
+/// The first element of range r of [0, count) split into kMeshRanges ranges of about equal size;
+/// range r is [range_begin(count, r), range_begin(count, r + 1)).
+inline int range_begin(int count, int r) {
+  return static_cast<int>(static_cast<long long>(count) * r / kMeshRanges);
+}
+
 }  // namespace rangefill
