@@ -259,6 +259,16 @@ MeshTopology build_topology(const Mesh& mesh) {
   return topology;
 }
 
+Vec3 vertex_normal(const Mesh& mesh, const MeshTopology& topology, int v) {
+  Vec3 normal = Vec3::Zero();  // summed in face order, as vertex_normals_from_faces does
+  for (int i = topology.faces_of_vertex_begin(v); i < topology.faces_of_vertex_end(v); ++i) {
+    normal += triangle_cross(mesh, topology.vertex_faces[i]);
+  }
+  const double length = normal.norm();
+  if (length > 0) normal /= length;
+  return normal;
+}
+
 int find_halfedge(const Mesh& mesh, const MeshTopology& topology, int from, int to) {
   for (int i = topology.faces_of_vertex_begin(from); i < topology.faces_of_vertex_end(from); ++i) {
     const int face = topology.vertex_faces[i];

@@ -107,7 +107,6 @@ SurfaceContext::SurfaceContext(const Mesh& surface_mesh, double mean_edge_length
     : mesh(surface_mesh),
       topology(build_topology(surface_mesh)),
       holes(find_holes(surface_mesh, topology)),
-      normals(vertex_normals_from_faces(surface_mesh)),
       mean_edge(mean_edge_length > 0 ? mean_edge_length
                                      : rangefill::mean_edge_length(surface_mesh, topology)),
       faces(surface_mesh, fill_regions(surface_mesh, holes)) {}
@@ -298,7 +297,7 @@ FillOutcome fill_part_through_planes(const SurfaceContext& surface, const Bounda
   for (const BoundaryLoop& part :
        split_complex_hole(surface.mesh, surface.topology, hole, best_frame)) {
     const Zone zone = grow_zone(surface.mesh, surface.topology, surface.holes, part,
-                                surface.normals, surface.mean_edge, options.zone);
+                                surface.mean_edge, options.zone);
     const std::vector<Projection> planes =
         find_projections(surface.mesh, surface.topology, zone, part, options.projection).planes;
     FillOutcome outcome =
@@ -315,7 +314,7 @@ FillOutcome fill_through_front(const SurfaceContext& surface, const BoundaryLoop
   std::vector<Vec3> samples, normals;
   for (int v : zone.vertices) {
     samples.push_back(surface.mesh.positions[v]);
-    normals.push_back(surface.normals[v]);
+    normals.push_back(vertex_normal(surface.mesh, surface.topology, v));
   }
   return checked(surface,
                  fill_by_front(surface.mesh, surface.topology, surface.faces, hole,
@@ -466,8 +465,8 @@ std::optional<Fill> fill_by_chain(const SurfaceContext& surface, const BoundaryL
                 inpainter,
                 options,
                 report,
-                grow_zone(surface.mesh, surface.topology, surface.holes, hole, surface.normals,
-                          surface.mean_edge, options.zone),
+                grow_zone(surface.mesh, surface.topology, surface.holes, hole, surface.mean_edge,
+                          options.zone),
                 std::nullopt};
   report.stages.zone = lap(stage);
   report.rings = work.zone.rings;

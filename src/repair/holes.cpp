@@ -13,19 +13,6 @@ double ccw_angle(const Vec3& reference, const Vec3& direction, const Vec3& norma
   return angle < 0 ? angle + 2 * M_PI : angle;
 }
 
-// Area-weighted normal of the faces around vertex v.
-Vec3 vertex_normal(const Mesh& mesh, const MeshTopology& topology, int v) {
-  Vec3 normal = Vec3::Zero();
-  for (int i = topology.faces_of_vertex_begin(v); i < topology.faces_of_vertex_end(v); ++i) {
-    normal += triangle_cross(mesh, topology.vertex_faces[i]);
-  }
-  return normal;
-}
-
-}  // namespace
-
-namespace {
-
 // The boundary half-edges of a mesh, followed from one to the next round each loop.
 class BoundaryWalk {
  public:

@@ -73,8 +73,7 @@ std::vector<int> other_holes_reached(const HoleSet& holes, const BoundaryLoop& h
 }  // namespace
 
 Zone grow_zone(const Mesh& mesh, const MeshTopology& topology, const HoleSet& holes,
-               const BoundaryLoop& hole, const std::vector<Vec3>& vertex_normals, double mean_edge,
-               const ZoneOptions& options) {
+               const BoundaryLoop& hole, double mean_edge, const ZoneOptions& options) {
   Zone zone;
   zone.rings = options.rings > 0 ? options.rings : rings_for_hole(hole.area, mean_edge, options);
   const double gamma = options.gamma_degrees * M_PI / 180.0;
@@ -83,7 +82,8 @@ Zone grow_zone(const Mesh& mesh, const MeshTopology& topology, const HoleSet& ho
   std::unordered_map<int, Vec3> diffused;
   std::unordered_set<int> zone_faces;
   std::vector<int> search = sorted_unique(hole.vertices);
-  for (int v : search) diffused.emplace(v, normalized_or_zero(vertex_normals[v]));
+  const auto normal = [&](int v) { return vertex_normal(mesh, topology, v); };
+  for (int v : search) diffused.emplace(v, normalized_or_zero(normal(v)));
 
   for (int ring = 1; ring <= zone.rings && !search.empty(); ++ring) {
     const std::unordered_set<int> is_search(search.begin(), search.end());
@@ -106,7 +106,7 @@ Zone grow_zone(const Mesh& mesh, const MeshTopology& topology, const HoleSet& ho
         if (!diffused.count(v)) new_vertices[new_count++] = v;
       }
       for (int k = 0; k < new_count && !rejected; ++k) {
-        const Vec3& candidate = vertex_normals[new_vertices[k]];
+        const Vec3 candidate = normal(new_vertices[k]);
         for (int v : mesh.triangles[face]) {
           if (is_search.count(v) && angle_between(candidate, diffused.at(v)) > gamma) {
             rejected = true;
@@ -122,7 +122,7 @@ Zone grow_zone(const Mesh& mesh, const MeshTopology& topology, const HoleSet& ho
       const Vec3 pull = options.alpha * ring * normalized_or_zero(search_normal);
       for (int k = 0; k < new_count; ++k) {
         const int v = new_vertices[k];
-        diffused.emplace(v, normalized_or_zero((vertex_normals[v] + pull) / 2));  // eq. 5
+        diffused.emplace(v, normalized_or_zero((normal(v) + pull) / 2));  // eq. 5
         next_search.push_back(v);
       }
     }

@@ -1,5 +1,7 @@
 #include "rangefill/core/topology.h"
 
+#include <cmath>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -101,6 +103,49 @@ TEST(Topology, DefectsAreCounted) {
   EXPECT_EQ(describe(defects).substr(0, 22), "4 non-manifold edges, ");
   EXPECT_NE(describe(defects).find("1 duplicated face, 1 degenerate face"), std::string::npos)
       << describe(defects);
+}
+
+// A grid of 120 000 faces, large enough to be built in parallel ranges of vertices, joined: every
+// edge once, in (lower, higher) vertex order, each half-edge on its edge and paired with the
+// half-edge that runs the other way.
+TEST(Topology, RangesBuiltInParallelJoinIntoOneTopology) {
+  const Mesh grid = testing::make_grid(245);  // 2 · 245² faces
+  ASSERT_GE(grid.face_count(), 100000);
+  const MeshTopology topology = build_topology(grid);
+  EXPECT_EQ(topology.edges.size(), 3u * 245 * 245 + 2 * 245);  // V + F − 1 on a disc
+  for (size_t e = 0; e < topology.edges.size(); ++e) {
+    const Edge& edge = topology.edges[e];
+    if (e > 0) {
+      const Edge& previous = topology.edges[e - 1];
+      ASSERT_LT(std::make_pair(previous.v0, previous.v1), std::make_pair(edge.v0, edge.v1)) << e;
+    }
+    for (int i = edge.first; i < edge.first + edge.count; ++i) {
+      const int h = topology.edge_halfedges[i];
+      ASSERT_EQ(topology.halfedge_edge[h], static_cast<int>(e));
+      const int source = topology.halfedge_source(grid, h),
+                target = topology.halfedge_target(grid, h);
+      ASSERT_EQ(std::min(source, target), edge.v0);
+      ASSERT_EQ(std::max(source, target), edge.v1);
+      const int opposite = topology.opposite[h];
+      ASSERT_EQ(opposite >= 0, edge.count == 2);
+      if (opposite >= 0) ASSERT_EQ(topology.halfedge_source(grid, opposite), target);
+    }
+  }
+  EXPECT_TRUE(topology.nonmanifold_vertices.empty());
+  EXPECT_FALSE(find_defects(grid, topology).any());
+}
+
+// A vertex's normal from its faces alone is the mesh-wide computation's, to the bit.
+TEST(Topology, VertexNormalIsTheMeshWideNormal) {
+  Mesh sphere = testing::make_sphere(8);
+  for (size_t v = 0; v < sphere.positions.size(); ++v) {
+    sphere.positions[v] *= 1 + 0.1 * std::sin(3.0 * static_cast<double>(v));
+  }
+  const MeshTopology topology = build_topology(sphere);
+  const std::vector<Vec3> normals = vertex_normals_from_faces(sphere);
+  for (int v = 0; v < sphere.vertex_count(); ++v) {
+    ASSERT_EQ(vertex_normal(sphere, topology, v), normals[v]) << v;
+  }
 }
 
 }  // namespace

@@ -482,7 +482,7 @@ TEST(HardHoles, ZoneEnclosingAnIslandDoesNotCoverIt) {
   const SurfaceContext surface(holed, 0);
   const Zone zone =
       grow_zone(holed, surface.topology, surface.holes, surface.holes.loops.at(options.holes[0]),
-                surface.normals, surface.mean_edge, options.zone);
+                surface.mean_edge, options.zone);
   bool beyond_block = false;
   for (int f : zone.faces) {
     for (int v : holed.triangles[f]) {

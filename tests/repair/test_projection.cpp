@@ -54,8 +54,7 @@ TiltedSheet tilted_sheet() {
   sheet.holes = find_holes(sheet.mesh, sheet.topology);
   ZoneOptions options;
   options.rings = 5;
-  sheet.zone = grow_zone(sheet.mesh, sheet.topology, sheet.holes, sheet.hole,
-                         vertex_normals_from_faces(sheet.mesh), 1.0, options);
+  sheet.zone = grow_zone(sheet.mesh, sheet.topology, sheet.holes, sheet.hole, 1.0, options);
   return sheet;
 }
 

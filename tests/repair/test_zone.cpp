@@ -43,8 +43,7 @@ const BoundaryLoop& loop_through(const HoleSet& holes, int vertex) {
 Zone zone_of(const Mesh& mesh, const BoundaryLoop& hole, const ZoneOptions& options) {
   const MeshTopology topology = build_topology(mesh);
   const HoleSet holes = find_holes(mesh, topology);
-  return grow_zone(mesh, topology, holes, hole, vertex_normals_from_faces(mesh),
-                   mean_edge_length(mesh, topology), options);
+  return grow_zone(mesh, topology, holes, hole, mean_edge_length(mesh, topology), options);
 }
 
 // Eq. 2 in units of d_m: ν = A' / (0.106 κ A' + 18) with A' = A / d_m², rounded to the nearest.

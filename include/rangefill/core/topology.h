@@ -81,6 +81,10 @@ std::string describe(const MeshDefects& defects);
 /// component meet (loops touching at a vertex, whose fills join the fans into one).
 std::vector<int> unfillable_vertices(const Mesh& mesh, const MeshTopology& topology);
 
+/// The unit normal of vertex v: the sum of its faces' cross products (area-weighted), normalised;
+/// zero when they cancel. vertex_normals_from_faces(mesh)[v] to the bit, in O(valence).
+Vec3 vertex_normal(const Mesh& mesh, const MeshTopology& topology, int v);
+
 /// The half-edge from vertex `from` to vertex `to` (the first in face order), or -1 if no face
 /// has it. O(valence).
 int find_halfedge(const Mesh& mesh, const MeshTopology& topology, int from, int to);

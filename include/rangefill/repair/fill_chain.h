@@ -143,8 +143,7 @@ struct SurfaceContext {
   const Mesh& mesh;
   MeshTopology topology;
   HoleSet holes;
-  std::vector<Vec3> normals;  // area-weighted, from the faces
-  double mean_edge;           // d_m
+  double mean_edge;  // d_m
   IntersectionIndex
       faces;  // for refusing fills that would cut through the surface (near the loops)
 };

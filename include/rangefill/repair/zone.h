@@ -40,10 +40,10 @@ int rings_for_hole(double hole_area, double mean_edge, const ZoneOptions& option
 /// search vertices and the normal of one of its new vertices exceeds γ; the new vertices of an
 /// accepted face take the diffused normal n' = (n + α·ν_i·n_s) / 2 (eq. 5, n_s the sum of its
 /// search vertices' diffused normals, normalised) and become the next ring's search vertices.
-/// Faces whose three vertices are already in the zone are added at the end. `vertex_normals` are
-/// the starting normals N (one per mesh vertex). Precondition: `hole` belongs to `holes`.
+/// Faces whose three vertices are already in the zone are added at the end. The starting normals
+/// N are vertex_normal's (topology.h), computed for the vertices the zone reaches only.
+/// Precondition: `hole` belongs to `holes`.
 Zone grow_zone(const Mesh& mesh, const MeshTopology& topology, const HoleSet& holes,
-               const BoundaryLoop& hole, const std::vector<Vec3>& vertex_normals, double mean_edge,
-               const ZoneOptions& options = {});
+               const BoundaryLoop& hole, double mean_edge, const ZoneOptions& options = {});
 
 }  // namespace rangefill
