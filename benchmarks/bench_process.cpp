@@ -241,7 +241,8 @@ class RatioReporter : public benchmark::ConsoleReporter {
 
 int main(int argc, char** argv) {
   cv::setNumThreads(1);  // cv::inpaint and fill_depth on one thread
-  // The rangefill command's malloc settings (tools/rangefill/huge_pages.cpp): freed blocks are kept.
+  // The rangefill command's malloc settings (tools/rangefill/huge_pages.cpp): freed blocks are
+  // kept.
   mallopt(M_MMAP_THRESHOLD, 256 << 20);
   mallopt(M_TRIM_THRESHOLD, 512 << 20);
   benchmark::Initialize(&argc, argv);
