@@ -77,25 +77,25 @@ struct IntersectionIndex::Tree {
     return static_cast<std::uint64_t>(x | y << 21 | z << 42);
   }
 
-  // Whether any (`all` false) or every (`all` true) cell of the cover that [low, high] meets is
-  // marked.
-  bool covered(const Vec3& low, const Vec3& high, bool all) const {
+  // Calls visit(i) for the index i of each cell of the cover that [low, high] meets, in order,
+  // while it returns true; whether it did for every cell.
+  template <typename Visit>
+  bool every_cover_cell(const Vec3& low, const Vec3& high, Visit visit) const {
     const Cells range = cells(low, high, cover_origin, cover_cell, kCoverAxisCells);
     for (long long z = range[2][0]; z <= range[2][1]; ++z) {
       for (long long y = range[1][0]; y <= range[1][1]; ++y) {
         for (long long x = range[0][0]; x <= range[0][1]; ++x) {
-          if (static_cast<bool>(cover[(z * kCoverAxisCells + y) * kCoverAxisCells + x]) != all) {
-            return !all;
-          }
+          if (!visit((z * kCoverAxisCells + y) * kCoverAxisCells + x)) return false;
         }
       }
     }
-    return all;
+    return true;
   }
 
   // Whether a query over [low, high] may read the grids alone.
   bool answers(const Vec3& low, const Vec3& high) const {
-    return regions.empty() || covered(low, high, true);
+    return regions.empty() ||
+           every_cover_cell(low, high, [&](long long cell) { return cover[cell] != 0; });
   }
 
   // The faces the grids hold: every face, or those near the regions.
@@ -112,21 +112,19 @@ struct IntersectionIndex::Tree {
         std::max((high - low).maxCoeff() / kCoverAxisCells, std::numeric_limits<double>::min());
     cover.assign(kCoverAxisCells * kCoverAxisCells * kCoverAxisCells, 0);
     for (const auto& [region_low, region_high] : regions) {
-      const Cells range = cells(region_low, region_high, cover_origin, cover_cell, kCoverAxisCells);
-      for (long long z = range[2][0]; z <= range[2][1]; ++z) {
-        for (long long y = range[1][0]; y <= range[1][1]; ++y) {
-          for (long long x = range[0][0]; x <= range[0][1]; ++x) {
-            cover[(z * kCoverAxisCells + y) * kCoverAxisCells + x] = 1;
-          }
-        }
-      }
+      every_cover_cell(region_low, region_high, [&](long long cell) {
+        cover[cell] = 1;
+        return true;
+      });
     }
     const int face_count = mesh.face_count();
     std::vector<std::vector<int>> found(kMeshRanges);
     parallel_for(kMeshRanges, mesh_pass_threads(face_count), [&](int r) {
       for (int face = range_begin(face_count, r); face < range_begin(face_count, r + 1); ++face) {
         const auto [face_low, face_high] = box(face);
-        if (covered(face_low, face_high, false)) found[r].push_back(face);
+        const bool meets_cover = !every_cover_cell(
+            face_low, face_high, [&](long long cell) { return cover[cell] == 0; });
+        if (meets_cover) found[r].push_back(face);
       }
     });
     for (const std::vector<int>& near : found) faces.insert(faces.end(), near.begin(), near.end());

@@ -75,6 +75,9 @@ EdgesOfRange build_edges_of_range(const Mesh& mesh, MeshTopology& topology, int 
   auto source = [&](int h) { return topology.halfedge_source(mesh, h); };
   auto target = [&](int h) { return topology.halfedge_target(mesh, h); };
   EdgesOfRange range;
+  // A closed mesh has some 3 edges a vertex, each with 2 half-edges.
+  range.edges.reserve(3 * static_cast<size_t>(last_vertex - first_vertex));
+  range.edge_halfedges.reserve(6 * static_cast<size_t>(last_vertex - first_vertex));
   std::vector<std::pair<int, int>> upward;  // (higher vertex, half-edge) of the edges leaving v up
   for (int v = first_vertex; v < last_vertex; ++v) {
     upward.clear();
