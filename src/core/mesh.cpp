@@ -7,6 +7,7 @@
 
 #include "rangefill/core/errors.h"
 #include "rangefill/core/geometry2d.h"
+#include "rangefill/core/parallel.h"
 #include "rangefill/core/topology.h"
 
 namespace rangefill {
@@ -25,6 +26,19 @@ int add_face(Mesh& mesh, const Triangle& triangle, int hole) {
   mesh.face_hole.push_back(hole);
   for (ExtraProperty& property : mesh.face_properties) property.values.push_back(0.0);
   return mesh.face_count() - 1;
+}
+
+void reserve_more(Mesh& mesh, int vertices, int faces) {
+  const size_t vertex_total = mesh.positions.size() + vertices;
+  const size_t face_total = mesh.triangles.size() + faces;
+  mesh.positions.reserve(vertex_total);
+  if (mesh.has_colors()) mesh.colors.reserve(vertex_total);
+  if (mesh.has_normals()) mesh.normals.reserve(vertex_total);
+  mesh.vertex_hole.reserve(vertex_total);
+  for (ExtraProperty& property : mesh.vertex_properties) property.values.reserve(vertex_total);
+  mesh.triangles.reserve(face_total);
+  mesh.face_hole.reserve(face_total);
+  for (ExtraProperty& property : mesh.face_properties) property.values.reserve(face_total);
 }
 
 Mesh make_mesh(std::vector<Vec3> positions, std::vector<Triangle> triangles) {
@@ -107,12 +121,21 @@ double mean_edge_length(const Mesh& mesh) {
 }
 
 double mean_edge_length(const Mesh& mesh, const MeshTopology& topology) {
-  if (topology.edges.empty()) return 0.0;
-  double sum = 0.0;
-  for (const Edge& edge : topology.edges) {
-    sum += (mesh.positions[edge.v0] - mesh.positions[edge.v1]).norm();
-  }
-  return sum / static_cast<double>(topology.edges.size());
+  if (topology.edge_count == 0) return 0.0;
+  // Sums over fixed ranges of half-edges, added in order: the same at any thread count.
+  const int halfedges = static_cast<int>(topology.opposite.size());
+  std::vector<double> sums(kMeshRanges, 0.0);
+  parallel_for(kMeshRanges, mesh_pass_threads(halfedges), [&](int r) {
+    double sum = 0.0;
+    for (int h = range_begin(halfedges, r); h < range_begin(halfedges, r + 1); ++h) {
+      if (!is_first_halfedge_of_edge(mesh, topology, h)) continue;
+      sum += (mesh.positions[topology.halfedge_source(mesh, h)] -
+              mesh.positions[topology.halfedge_target(mesh, h)])
+                 .norm();
+    }
+    sums[r] = sum;
+  });
+  return std::accumulate(sums.begin(), sums.end(), 0.0) / topology.edge_count;
 }
 
 std::array<Vec3, 2> bounding_box(const Mesh& mesh) {

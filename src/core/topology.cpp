@@ -34,6 +34,33 @@ void build_vertex_faces(const Mesh& mesh, MeshTopology& topology) {
   }
 }
 
+// The half-edges of v's faces on the edges whose lower end is v, as (higher end, half-edge),
+// sorted: each run of one higher end is an edge, its half-edges ascending.
+void upward_halfedges(const Mesh& mesh, const MeshTopology& topology, int v,
+                      std::vector<std::pair<int, int>>& upward) {
+  upward.clear();
+  for (int i = topology.faces_of_vertex_begin(v); i < topology.faces_of_vertex_end(v); ++i) {
+    const int face = topology.vertex_faces[i];
+    for (int h = 3 * face; h < 3 * face + 3; ++h) {
+      const int source = topology.halfedge_source(mesh, h);
+      const int target = topology.halfedge_target(mesh, h);
+      if (std::min(source, target) == v) upward.emplace_back(std::max(source, target), h);
+    }
+  }
+  std::sort(upward.begin(), upward.end());
+}
+
+// Calls on_edge(begin, end) for each run upward[begin, end) of one higher end: each edge.
+template <typename OnEdge>
+void for_each_edge_run(const std::vector<std::pair<int, int>>& upward, OnEdge on_edge) {
+  for (size_t begin = 0; begin < upward.size();) {
+    size_t end = begin + 1;
+    while (end < upward.size() && upward[end].first == upward[begin].first) ++end;
+    on_edge(begin, end);
+    begin = end;
+  }
+}
+
 // The faces, among those on the half-edges upward[begin, end) of one edge, with the three
 // vertices of an earlier face on it, each counted on its first edge (h % 3 == 0): a face on the
 // same vertices as an earlier one shares its first edge with it.
@@ -60,109 +87,69 @@ int duplicated_faces(const Mesh& mesh, const std::vector<std::pair<int, int>>& u
   return count;
 }
 
-// The edges whose lower end lies in a range of vertices, built apart from the others.
-struct EdgesOfRange {
-  std::vector<Edge> edges;  // Edge::first into edge_halfedges below
-  std::vector<int> edge_halfedges;
-  int nonmanifold_edges = 0, misoriented_edges = 0, duplicated_faces = 0;
+// What the edges whose lower end lies in a range of vertices count.
+struct EdgeCounts {
+  int edges = 0, nonmanifold_edges = 0, misoriented_edges = 0, duplicated_faces = 0;
 };
 
-// The edges whose lower end v is in [first_vertex, last_vertex), ordered by (v, higher vertex,
-// half-edge); pairs their opposites in `topology` and gives each of their half-edges the edge's
-// index in the range. The half-edges of the edges whose lower end is v are among v's faces.
-EdgesOfRange build_edges_of_range(const Mesh& mesh, MeshTopology& topology, int first_vertex,
-                                  int last_vertex) {
-  auto source = [&](int h) { return topology.halfedge_source(mesh, h); };
-  auto target = [&](int h) { return topology.halfedge_target(mesh, h); };
-  EdgesOfRange range;
-  // A closed mesh has some 3 edges a vertex, each with 2 half-edges.
-  range.edges.reserve(3 * static_cast<size_t>(last_vertex - first_vertex));
-  range.edge_halfedges.reserve(6 * static_cast<size_t>(last_vertex - first_vertex));
-  std::vector<std::pair<int, int>> upward;  // (higher vertex, half-edge) of the edges leaving v up
+// Pairs the opposite half-edges of the edges whose lower end is in [first_vertex, last_vertex)
+// and counts those edges.
+EdgeCounts pair_opposites_of_range(const Mesh& mesh, MeshTopology& topology, int first_vertex,
+                                   int last_vertex) {
+  EdgeCounts counts;
+  std::vector<std::pair<int, int>> upward;
   for (int v = first_vertex; v < last_vertex; ++v) {
-    upward.clear();
-    for (int i = topology.faces_of_vertex_begin(v); i < topology.faces_of_vertex_end(v); ++i) {
-      const int face = topology.vertex_faces[i];
-      for (int h = 3 * face; h < 3 * face + 3; ++h) {
-        if (std::min(source(h), target(h)) == v)
-          upward.emplace_back(std::max(source(h), target(h)), h);
-      }
-    }
-    std::sort(upward.begin(), upward.end());
-    for (size_t begin = 0; begin < upward.size();) {
-      size_t end = begin + 1;
-      while (end < upward.size() && upward[end].first == upward[begin].first) ++end;
-      const int edge = static_cast<int>(range.edges.size());
-      const int first = static_cast<int>(range.edge_halfedges.size());
-      range.edges.push_back({v, upward[begin].first, first, static_cast<int>(end - begin)});
-      for (size_t i = begin; i < end; ++i) {
-        topology.halfedge_edge[upward[i].second] = edge;
-        range.edge_halfedges.push_back(upward[i].second);
-      }
-      range.duplicated_faces += duplicated_faces(mesh, upward, begin, end);
+    upward_halfedges(mesh, topology, v, upward);
+    for_each_edge_run(upward, [&](size_t begin, size_t end) {
+      ++counts.edges;
+      counts.duplicated_faces += duplicated_faces(mesh, upward, begin, end);
       if (end - begin == 2) {
         const int a = upward[begin].second, b = upward[begin + 1].second;
-        if (source(a) == target(b)) {
+        if (topology.halfedge_source(mesh, a) == topology.halfedge_target(mesh, b)) {
           topology.opposite[a] = b;
           topology.opposite[b] = a;
         } else {
           topology.opposite[a] = topology.opposite[b] = kNonManifold;
-          ++range.misoriented_edges;
+          ++counts.misoriented_edges;
         }
       } else if (end - begin > 2) {
         for (size_t i = begin; i < end; ++i) topology.opposite[upward[i].second] = kNonManifold;
-        ++range.nonmanifold_edges;
+        ++counts.nonmanifold_edges;
       }
-      begin = end;
-    }
+    });
   }
-  return range;
+  return counts;
 }
 
-// Groups half-edges into undirected edges, ordered by (lower vertex, higher vertex, half-edge),
-// and pairs opposites: ranges of vertices in parallel, joined in order (the same at any thread
-// count).
-void build_edges(const Mesh& mesh, MeshTopology& topology) {
-  const int halfedge_count = 3 * mesh.face_count();
-  topology.opposite.assign(halfedge_count, kBoundary);
-  topology.halfedge_edge.assign(halfedge_count, -1);
+// Pairs opposite half-edges and counts the edges: ranges of vertices in parallel, each writing the
+// half-edges of its own edges (the same at any thread count).
+void pair_opposites(const Mesh& mesh, MeshTopology& topology) {
+  topology.opposite.assign(3 * static_cast<size_t>(mesh.face_count()), kBoundary);
   const int vertices = mesh.vertex_count();
-  std::vector<EdgesOfRange> ranges(kMeshRanges);
+  std::vector<EdgeCounts> ranges(kMeshRanges);
   parallel_for(kMeshRanges, mesh_pass_threads(mesh.face_count()), [&](int r) {
-    ranges[r] = build_edges_of_range(mesh, topology, range_begin(vertices, r),
-                                     range_begin(vertices, r + 1));
+    ranges[r] = pair_opposites_of_range(mesh, topology, range_begin(vertices, r),
+                                        range_begin(vertices, r + 1));
   });
-  std::vector<int> edge_offsets(kMeshRanges + 1, 0), halfedge_offsets(kMeshRanges + 1, 0);
-  for (int r = 0; r < kMeshRanges; ++r) {
-    edge_offsets[r + 1] = edge_offsets[r] + static_cast<int>(ranges[r].edges.size());
-    halfedge_offsets[r + 1] =
-        halfedge_offsets[r] + static_cast<int>(ranges[r].edge_halfedges.size());
-    topology.nonmanifold_edge_count += ranges[r].nonmanifold_edges;
-    topology.misoriented_edge_count += ranges[r].misoriented_edges;
-    topology.duplicated_face_count += ranges[r].duplicated_faces;
+  for (const EdgeCounts& range : ranges) {
+    topology.edge_count += range.edges;
+    topology.nonmanifold_edge_count += range.nonmanifold_edges;
+    topology.misoriented_edge_count += range.misoriented_edges;
+    topology.duplicated_face_count += range.duplicated_faces;
   }
-  topology.edges.resize(edge_offsets.back());
-  topology.edge_halfedges.resize(halfedge_offsets.back());
-  parallel_for(kMeshRanges, mesh_pass_threads(mesh.face_count()), [&](int r) {
-    EdgesOfRange& range = ranges[r];
-    for (int h : range.edge_halfedges) topology.halfedge_edge[h] += edge_offsets[r];
-    for (Edge& edge : range.edges) edge.first += halfedge_offsets[r];
-    std::copy(range.edges.begin(), range.edges.end(), topology.edges.begin() + edge_offsets[r]);
-    std::copy(range.edge_halfedges.begin(), range.edge_halfedges.end(),
-              topology.edge_halfedges.begin() + halfedge_offsets[r]);
-    range = EdgesOfRange();
-  });
 }
 
 // Components of faces joined through manifold edges (and misoriented or non-manifold ones).
 void build_components(const Mesh& mesh, MeshTopology& topology) {
   std::vector<int> parent(mesh.face_count());
   std::iota(parent.begin(), parent.end(), 0);
-  for (const Edge& edge : topology.edges) {
-    const int first_face = halfedge_face(topology.edge_halfedges[edge.first]);
-    for (int i = 1; i < edge.count; ++i) {
-      const int face = halfedge_face(topology.edge_halfedges[edge.first + i]);
-      parent[find_root(parent, face)] = find_root(parent, first_face);
+  for (int h = 0; h < static_cast<int>(topology.opposite.size()); ++h) {
+    const int opposite = topology.opposite[h];
+    if (opposite == kBoundary || (opposite >= 0 && opposite < h)) continue;
+    const std::vector<int> across =
+        opposite >= 0 ? std::vector<int>{opposite} : halfedges_on_edge(mesh, topology, h);
+    for (int other : across) {
+      parent[find_root(parent, halfedge_face(other))] = find_root(parent, halfedge_face(h));
     }
   }
   topology.face_component.assign(mesh.face_count(), -1);
@@ -214,11 +201,13 @@ int count_fans(const Mesh& mesh, const MeshTopology& topology, int v, std::vecto
       if (topology.halfedge_source(mesh, h) != v) continue;
       // The two edges of `face` at v are the one leaving v and the one entering it.
       for (int at_v : {h, prev_halfedge(h)}) {
-        const Edge& edge = topology.edges[topology.halfedge_edge[at_v]];
-        if (edge.count != 2) continue;
-        const int h0 = topology.edge_halfedges[edge.first];
-        const int neighbour =
-            halfedge_face(h0 == at_v ? topology.edge_halfedges[edge.first + 1] : h0);
+        int across = topology.opposite[at_v];
+        if (across == kNonManifold) {  // linked too when its edge has two misoriented faces
+          const std::vector<int> on_edge = halfedges_on_edge(mesh, topology, at_v);
+          across = on_edge.size() == 2 ? on_edge[on_edge[0] == at_v] : kBoundary;
+        }
+        if (across < 0) continue;
+        const int neighbour = halfedge_face(across);
         const auto other = std::lower_bound(topology.vertex_faces.begin() + begin,
                                             topology.vertex_faces.begin() + end, neighbour);
         const int a = find_root(parent, i - begin);
@@ -256,10 +245,56 @@ void find_nonmanifold_vertices(const Mesh& mesh, MeshTopology& topology) {
 MeshTopology build_topology(const Mesh& mesh) {
   MeshTopology topology;
   build_vertex_faces(mesh, topology);
-  build_edges(mesh, topology);
+  pair_opposites(mesh, topology);
   build_components(mesh, topology);
   find_nonmanifold_vertices(mesh, topology);
   return topology;
+}
+
+MeshEdges build_edges(const Mesh& mesh, const MeshTopology& topology) {
+  MeshEdges edges;
+  edges.edges.reserve(topology.edge_count);
+  edges.edge_halfedges.reserve(topology.opposite.size());
+  edges.halfedge_edge.assign(topology.opposite.size(), -1);
+  std::vector<std::pair<int, int>> upward;
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    upward_halfedges(mesh, topology, v, upward);
+    for_each_edge_run(upward, [&](size_t begin, size_t end) {
+      const int edge = static_cast<int>(edges.edges.size());
+      edges.edges.push_back({v, upward[begin].first, static_cast<int>(edges.edge_halfedges.size()),
+                             static_cast<int>(end - begin)});
+      for (size_t i = begin; i < end; ++i) {
+        edges.halfedge_edge[upward[i].second] = edge;
+        edges.edge_halfedges.push_back(upward[i].second);
+      }
+    });
+  }
+  return edges;
+}
+
+std::vector<int> halfedges_on_edge(const Mesh& mesh, const MeshTopology& topology, int h) {
+  const int opposite = topology.opposite[h];
+  if (opposite == kBoundary) return {h};
+  if (opposite >= 0) return {std::min(h, opposite), std::max(h, opposite)};
+  const int source = topology.halfedge_source(mesh, h);
+  const int target = topology.halfedge_target(mesh, h);
+  std::vector<int> on_edge;
+  for (int i = topology.faces_of_vertex_begin(source); i < topology.faces_of_vertex_end(source);
+       ++i) {
+    const int face = topology.vertex_faces[i];
+    for (int g = 3 * face; g < 3 * face + 3; ++g) {
+      const int a = topology.halfedge_source(mesh, g), b = topology.halfedge_target(mesh, g);
+      if ((a == source && b == target) || (a == target && b == source)) on_edge.push_back(g);
+    }
+  }
+  return on_edge;
+}
+
+bool is_first_halfedge_of_edge(const Mesh& mesh, const MeshTopology& topology, int h) {
+  const int opposite = topology.opposite[h];
+  if (opposite == kBoundary) return true;
+  if (opposite >= 0) return h < opposite;
+  return halfedges_on_edge(mesh, topology, h).front() == h;
 }
 
 Vec3 vertex_normal(const Mesh& mesh, const MeshTopology& topology, int v) {

@@ -150,7 +150,7 @@ RepairResult fill_holes_cgal(const Mesh& mesh, const BaselineOptions& options) {
   RepairResult result;
   result.mesh = mesh;
   result.restoration_matrix.push_back(
-      {mesh.vertex_count(), static_cast<long long>(topology.edges.size()), mesh.face_count()});
+      {mesh.vertex_count(), topology.edge_count, mesh.face_count()});
   for (int id : selected) {
     const BoundaryLoop& loop = loops.loops[id];
     HoleReport report;

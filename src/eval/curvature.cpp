@@ -53,8 +53,9 @@ VertexCurvature vertex_curvature(const Mesh& mesh, const MeshTopology& topology)
     }
   }
   std::vector<char> on_border(n, 0);
-  for (const Edge& edge : topology.edges) {
-    if (edge.count == 1) on_border[edge.v0] = on_border[edge.v1] = 1;
+  for (int h = 0; h < static_cast<int>(topology.opposite.size()); ++h) {
+    if (topology.opposite[h] != kBoundary) continue;
+    on_border[topology.halfedge_source(mesh, h)] = on_border[topology.halfedge_target(mesh, h)] = 1;
   }
   for (int v = 0; v < n; ++v) {
     const double a = curvature.area[v];
@@ -66,13 +67,13 @@ VertexCurvature vertex_curvature(const Mesh& mesh, const MeshTopology& topology)
   return curvature;
 }
 
-std::vector<double> dihedral_angles(const Mesh& mesh, const MeshTopology& topology) {
-  std::vector<double> angles(topology.edges.size(), 0.0);
-  for (size_t e = 0; e < topology.edges.size(); ++e) {
-    const Edge& edge = topology.edges[e];
+std::vector<double> dihedral_angles(const Mesh& mesh, const MeshEdges& edges) {
+  std::vector<double> angles(edges.edges.size(), 0.0);
+  for (size_t e = 0; e < edges.edges.size(); ++e) {
+    const Edge& edge = edges.edges[e];
     if (edge.count != 2) continue;
-    const int f = halfedge_face(topology.edge_halfedges[edge.first]);
-    const int g = halfedge_face(topology.edge_halfedges[edge.first + 1]);
+    const int f = halfedge_face(edges.edge_halfedges[edge.first]);
+    const int g = halfedge_face(edges.edge_halfedges[edge.first + 1]);
     const Vec3 a = triangle_cross(mesh, f), b = triangle_cross(mesh, g);
     if (is_degenerate(mesh, f) || is_degenerate(mesh, g)) continue;
     angles[e] = std::atan2(a.cross(b).norm(), a.dot(b));

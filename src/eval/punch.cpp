@@ -28,17 +28,17 @@ struct EdgeGraph {
   std::vector<int> offsets, neighbours;
 };
 
-EdgeGraph edge_graph(const Mesh& mesh, const MeshTopology& topology) {
+EdgeGraph edge_graph(const Mesh& mesh, const MeshEdges& edges) {
   EdgeGraph graph;
   graph.offsets.assign(mesh.vertex_count() + 1, 0);
-  for (const Edge& edge : topology.edges) {
+  for (const Edge& edge : edges.edges) {
     ++graph.offsets[edge.v0 + 1];
     ++graph.offsets[edge.v1 + 1];
   }
   std::partial_sum(graph.offsets.begin(), graph.offsets.end(), graph.offsets.begin());
   graph.neighbours.resize(graph.offsets.back());
   std::vector<int> cursor(graph.offsets.begin(), graph.offsets.end() - 1);
-  for (const Edge& edge : topology.edges) {
+  for (const Edge& edge : edges.edges) {
     graph.neighbours[cursor[edge.v0]++] = edge.v1;
     graph.neighbours[cursor[edge.v1]++] = edge.v0;
   }
@@ -146,6 +146,7 @@ double area_of(const Mesh& mesh, const std::vector<int>& faces) {
 struct SurfaceShape {
   const Mesh& mesh;
   const MeshTopology& topology;
+  const MeshEdges& edges;
   VertexCurvature curvature;
   std::vector<double> dihedral;
 };
@@ -177,8 +178,9 @@ void classify(const SurfaceShape& surface, const PunchOptions& options, double m
     for (int h = 3 * face; h < 3 * face + 3; ++h) {
       const int opposite = surface.topology.opposite[h];
       if (opposite < h || !std::binary_search(faces.begin(), faces.end(), opposite / 3)) continue;
-      if (surface.dihedral[surface.topology.halfedge_edge[h]] < sharp) continue;
-      const Edge& edge = surface.topology.edges[surface.topology.halfedge_edge[h]];
+      const int edge_index = surface.edges.halfedge_edge[h];
+      if (surface.dihedral[edge_index] < sharp) continue;
+      const Edge& edge = surface.edges.edges[edge_index];
       sharp_length += (surface.mesh.positions[edge.v0] - surface.mesh.positions[edge.v1]).norm();
     }
   }
@@ -239,9 +241,10 @@ PunchResult punch_holes(const Mesh& mesh, const PunchOptions& options) {
   check_options(options);
   const MeshTopology topology = build_topology(mesh);
   const double mean_edge = mean_edge_length(mesh, topology);
-  const EdgeGraph graph = edge_graph(mesh, topology);
-  const SurfaceShape surface{mesh, topology, vertex_curvature(mesh, topology),
-                             dihedral_angles(mesh, topology)};
+  const MeshEdges edges = build_edges(mesh, topology);
+  const EdgeGraph graph = edge_graph(mesh, edges);
+  const SurfaceShape surface{mesh, topology, edges, vertex_curvature(mesh, topology),
+                             dihedral_angles(mesh, edges)};
 
   std::mt19937_64 random(options.seed);
   std::vector<char> vertex_touched(mesh.vertex_count(), 0);

@@ -687,8 +687,10 @@ std::string serialize_ply(const Mesh& mesh, const WriteOptions& options) {
     out += std::string("comment ") + kProvenanceProperty +
            ": -1 = from the input, k >= 0 = generated when filling hole k\n";
   }
-  auto property = [&out](ScalarType type, const std::string& name) {
+  size_t record_bytes = 0;  // of the element being declared, in binary
+  auto property = [&out, &record_bytes](ScalarType type, const std::string& name) {
     out += std::string("property ") + type_name(type) + " " + name + "\n";
+    record_bytes += type_size(type);
   };
   out += "element vertex " + std::to_string(mesh.vertex_count()) + "\n";
   for (const char* axis : {"x", "y", "z"}) property(mesh.storage.position, axis);
@@ -700,11 +702,16 @@ std::string serialize_ply(const Mesh& mesh, const WriteOptions& options) {
   }
   for (const ExtraProperty& extra : mesh.vertex_properties) property(extra.type, extra.name);
   if (provenance) property(ScalarType::int32, kProvenanceProperty);
+  const size_t vertex_bytes = record_bytes;
   out += "element face " + std::to_string(mesh.face_count()) + "\n";
   out += "property list uchar int vertex_indices\n";
+  record_bytes = type_size(ScalarType::uint8) + 3 * type_size(ScalarType::int32);
   for (const ExtraProperty& extra : mesh.face_properties) property(extra.type, extra.name);
   if (provenance) property(ScalarType::int32, kProvenanceProperty);
   out += "end_header\n";
+  if (encoding != PlyEncoding::ascii) {  // the body's exact size: the string grows once
+    out.reserve(out.size() + mesh.vertex_count() * vertex_bytes + mesh.face_count() * record_bytes);
+  }
 
   BodyWriter body(out, encoding);
   for (int v = 0; v < mesh.vertex_count(); ++v) {

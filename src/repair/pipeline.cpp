@@ -317,6 +317,13 @@ void defer_fill(const BoundaryLoop& loop, int other, RepairState& state, HoleRep
 bool merge_pass(const std::vector<const BoundaryLoop*>& loops,
                 const std::vector<std::optional<Fill>>& fills, std::vector<HoleReport>& reports,
                 RepairState& state, RepairResult& result) {
+  int new_vertices = 0, new_faces = 0;
+  for (const std::optional<Fill>& fill : fills) {
+    if (!fill) continue;
+    new_vertices += static_cast<int>(fill->points.size());
+    new_faces += static_cast<int>(fill->triangles.size());
+  }
+  reserve_more(result.mesh, new_vertices, new_faces);
   std::vector<size_t> merged;
   bool next_pass = false;
   for (size_t i = 0; i < loops.size(); ++i) {
@@ -357,9 +364,8 @@ RepairResult repair(Mesh&& input, const RepairOptions& options) {
     if (pass == 0) {
       mean_edge = surface.mean_edge;
       if (!(mean_edge > 0)) throw InvalidInput("repair: the mesh has no edges");
-      result.restoration_matrix.push_back({mesh.vertex_count(),
-                                           static_cast<long long>(surface.topology.edges.size()),
-                                           mesh.face_count()});
+      result.restoration_matrix.push_back(
+          {mesh.vertex_count(), surface.topology.edge_count, mesh.face_count()});
       result.defects = find_defects(mesh, surface.topology);
       state.unfillable = unfillable_vertices(mesh, surface.topology);
       const int loops = static_cast<int>(surface.holes.loops.size());

@@ -77,7 +77,7 @@ std::vector<Triangle> edge_manifold(const std::vector<Vec3>& positions,
 void orient(const std::vector<Vec3>& positions, const std::vector<Vec3>& normals,
             std::vector<Triangle>& triangles) {
   const Mesh mesh = make_mesh(positions, triangles);
-  const MeshTopology topology = build_topology(mesh);
+  const MeshEdges edges = build_edges(mesh, build_topology(mesh));
   auto has_directed = [&](const Triangle& t, int a, int b) {
     for (int k = 0; k < 3; ++k) {
       if (t[k] == a && t[(k + 1) % 3] == b) return true;
@@ -93,11 +93,11 @@ void orient(const std::vector<Vec3>& positions, const std::vector<Vec3>& normals
       const int f = piece[i];
       for (int k = 0; k < 3; ++k) {
         // Half-edge 3f + k is of f as it was; a → b is that edge the way f runs now.
-        const Edge& edge = topology.edges[topology.halfedge_edge[3 * f + k]];
+        const Edge& edge = edges.edges[edges.halfedge_edge[3 * f + k]];
         const bool along = has_directed(triangles[f], edge.v0, edge.v1);
         const int a = along ? edge.v0 : edge.v1, b = along ? edge.v1 : edge.v0;
         for (int j = edge.first; j < edge.first + edge.count; ++j) {
-          const int g = halfedge_face(topology.edge_halfedges[j]);
+          const int g = halfedge_face(edges.edge_halfedges[j]);
           if (visited[g]) continue;
           visited[g] = 1;
           if (has_directed(triangles[g], a, b)) std::swap(triangles[g][1], triangles[g][2]);
@@ -156,11 +156,12 @@ void make_oriented_manifold(const std::vector<Vec3>& positions, const std::vecto
     orient(positions, normals, triangles);
     const Mesh mesh = make_mesh(positions, triangles);
     const MeshTopology topology = build_topology(mesh);
+    const MeshEdges edges = build_edges(mesh, topology);
     std::vector<char> drop(triangles.size(), 0);
-    for (const Edge& edge : topology.edges) {
+    for (const Edge& edge : edges.edges) {
       if (edge.count != 2) continue;
-      const int h0 = topology.edge_halfedges[edge.first];
-      const int h1 = topology.edge_halfedges[edge.first + 1];
+      const int h0 = edges.edge_halfedges[edge.first];
+      const int h1 = edges.edge_halfedges[edge.first + 1];
       const int f0 = halfedge_face(h0), f1 = halfedge_face(h1);
       const bool twisted = topology.halfedge_source(mesh, h0) == topology.halfedge_source(mesh, h1);
       const bool folded = triangle_cross(mesh, f0).normalized().dot(

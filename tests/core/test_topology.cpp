@@ -1,5 +1,6 @@
 #include "rangefill/core/topology.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -19,7 +20,7 @@ using testing::make_grid;
 TEST(Topology, PairsTheHalfEdgesOfAClosedMesh) {
   const Mesh cube = make_cube();
   const MeshTopology topology = build_topology(cube);
-  EXPECT_EQ(topology.edges.size(), 18u);
+  EXPECT_EQ(topology.edge_count, 18);
   EXPECT_EQ(topology.component_count, 1);
   EXPECT_EQ(topology.nonmanifold_edge_count, 0);
   EXPECT_TRUE(topology.nonmanifold_vertices.empty());
@@ -28,7 +29,7 @@ TEST(Topology, PairsTheHalfEdgesOfAClosedMesh) {
     ASSERT_GE(o, 0) << h;
     EXPECT_EQ(topology.opposite[o], h);
     EXPECT_EQ(topology.halfedge_source(cube, o), topology.halfedge_target(cube, h));
-    EXPECT_EQ(topology.halfedge_edge[o], topology.halfedge_edge[h]);
+    EXPECT_EQ(halfedges_on_edge(cube, topology, h), halfedges_on_edge(cube, topology, o));
   }
   for (int v = 0; v < cube.vertex_count(); ++v) {
     EXPECT_GE(topology.faces_of_vertex_end(v) - topology.faces_of_vertex_begin(v), 3) << v;
@@ -66,6 +67,35 @@ TEST(Topology, MisorientedEdgeIsCounted) {
   const MeshTopology topology = build_topology(flipped);
   EXPECT_EQ(topology.misoriented_edge_count, 1);
   EXPECT_TRUE(topology.nonmanifold_vertices.empty());
+}
+
+// Without a stored edge list, the half-edges of an edge are found where they lie: three faces on
+// edge (0, 1), a misoriented pair on (0, 2) and open edges. Each edge's first half-edge is the one
+// that counts it, as in the listed edges; components and fans join across every edge.
+TEST(Topology, EdgesAreFoundWithoutAList) {
+  const Mesh mesh =
+      make_mesh({{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, -1, 0}, {0.5, 0, 1}, {-1, 1, 0}},
+                {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}, {2, 0, 5}});
+  const MeshTopology topology = build_topology(mesh);
+  const MeshEdges edges = build_edges(mesh, topology);
+  EXPECT_EQ(topology.edge_count, static_cast<int>(edges.edges.size()));
+  EXPECT_EQ(topology.nonmanifold_edge_count, 1);
+  EXPECT_EQ(topology.misoriented_edge_count, 1);
+  EXPECT_EQ(topology.component_count, 1);
+  int firsts = 0;
+  for (int h = 0; h < 3 * mesh.face_count(); ++h) {
+    const Edge& edge = edges.edges[edges.halfedge_edge[h]];
+    const std::vector<int> listed(edges.edge_halfedges.begin() + edge.first,
+                                  edges.edge_halfedges.begin() + edge.first + edge.count);
+    EXPECT_EQ(halfedges_on_edge(mesh, topology, h), listed) << h;
+    EXPECT_EQ(is_first_halfedge_of_edge(mesh, topology, h), listed.front() == h) << h;
+    firsts += is_first_halfedge_of_edge(mesh, topology, h);
+  }
+  EXPECT_EQ(firsts, topology.edge_count);
+  EXPECT_EQ(halfedges_on_edge(mesh, topology, 0).size(), 3u);  // (0, 1)
+  // Vertex 2's faces 0 and 3 meet at the misoriented edge (0, 2): one fan.
+  EXPECT_EQ(
+      std::count(topology.nonmanifold_vertices.begin(), topology.nonmanifold_vertices.end(), 2), 0);
 }
 
 // Where loops of one component touch at a vertex, fills can join its fans: the vertex is fillable.
@@ -112,23 +142,27 @@ TEST(Topology, RangesBuiltInParallelJoinIntoOneTopology) {
   const Mesh grid = testing::make_grid(245);  // 2 · 245² faces
   ASSERT_GE(grid.face_count(), 100000);
   const MeshTopology topology = build_topology(grid);
-  EXPECT_EQ(topology.edges.size(), 3u * 245 * 245 + 2 * 245);  // V + F − 1 on a disc
-  for (size_t e = 0; e < topology.edges.size(); ++e) {
-    const Edge& edge = topology.edges[e];
+  EXPECT_EQ(topology.edge_count, 3 * 245 * 245 + 2 * 245);  // V + F − 1 on a disc
+  const MeshEdges edges = build_edges(grid, topology);
+  ASSERT_EQ(edges.edges.size(), static_cast<size_t>(topology.edge_count));
+  for (size_t e = 0; e < edges.edges.size(); ++e) {
+    const Edge& edge = edges.edges[e];
     if (e > 0) {
-      const Edge& previous = topology.edges[e - 1];
+      const Edge& previous = edges.edges[e - 1];
       ASSERT_LT(std::make_pair(previous.v0, previous.v1), std::make_pair(edge.v0, edge.v1)) << e;
     }
     for (int i = edge.first; i < edge.first + edge.count; ++i) {
-      const int h = topology.edge_halfedges[i];
-      ASSERT_EQ(topology.halfedge_edge[h], static_cast<int>(e));
+      const int h = edges.edge_halfedges[i];
+      ASSERT_EQ(edges.halfedge_edge[h], static_cast<int>(e));
       const int source = topology.halfedge_source(grid, h),
                 target = topology.halfedge_target(grid, h);
       ASSERT_EQ(std::min(source, target), edge.v0);
       ASSERT_EQ(std::max(source, target), edge.v1);
       const int opposite = topology.opposite[h];
       ASSERT_EQ(opposite >= 0, edge.count == 2);
-      if (opposite >= 0) ASSERT_EQ(topology.halfedge_source(grid, opposite), target);
+      if (opposite >= 0) {
+        ASSERT_EQ(topology.halfedge_source(grid, opposite), target);
+      }
     }
   }
   EXPECT_TRUE(topology.nonmanifold_vertices.empty());

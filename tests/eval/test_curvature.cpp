@@ -66,8 +66,7 @@ TEST(VertexCurvature, CylinderBendsOneWay) {
 // The cube's 12 edges fold by 90°, the diagonals of its sides not at all.
 TEST(DihedralAngles, CubeEdgesAreRightAngles) {
   const Mesh cube = testing::make_cube();
-  const MeshTopology topology = build_topology(cube);
-  const std::vector<double> angles = dihedral_angles(cube, topology);
+  const std::vector<double> angles = dihedral_angles(cube, build_edges(cube, build_topology(cube)));
   ASSERT_EQ(angles.size(), 18u);
   int right = 0, flat = 0;
   for (double angle : angles) {
@@ -81,8 +80,7 @@ TEST(DihedralAngles, CubeEdgesAreRightAngles) {
 // An edge with one face has no dihedral angle.
 TEST(DihedralAngles, BorderEdgesAreZero) {
   const Mesh grid = testing::make_grid(1);
-  const MeshTopology topology = build_topology(grid);
-  const std::vector<double> angles = dihedral_angles(grid, topology);
+  const std::vector<double> angles = dihedral_angles(grid, build_edges(grid, build_topology(grid)));
   for (size_t e = 0; e < angles.size(); ++e) EXPECT_EQ(angles[e], 0) << e;
 }
 

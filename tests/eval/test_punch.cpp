@@ -89,8 +89,7 @@ TEST(PunchHoles, LeavesOneSimpleLoopPerHoleAndKeepsHolesApart) {
       for (int v : vertices) EXPECT_TRUE(used_vertices.insert(v).second) << "vertex " << v;
       const Mesh disk = extract_faces(sphere(), hole.removed_faces);
       const MeshTopology topology = build_topology(disk);
-      EXPECT_EQ(disk.vertex_count() - static_cast<int>(topology.edges.size()) + disk.face_count(),
-                1);
+      EXPECT_EQ(disk.vertex_count() - topology.edge_count + disk.face_count(), 1);
       EXPECT_EQ(find_holes(disk, topology).loops.size(), 1u);
       removed += hole.removed_faces.size();
     }
@@ -209,7 +208,7 @@ TEST(PunchHoles, ElongatedHolesAreLongSimpleDisks) {
     EXPECT_GT(length, 2 * (2 * hole.radius));
     const Mesh disk = extract_faces(fine_sphere(), hole.removed_faces);
     const MeshTopology topology = build_topology(disk);
-    EXPECT_EQ(disk.vertex_count() - static_cast<int>(topology.edges.size()) + disk.face_count(), 1);
+    EXPECT_EQ(disk.vertex_count() - topology.edge_count + disk.face_count(), 1);
   }
 }
 

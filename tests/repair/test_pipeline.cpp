@@ -768,7 +768,7 @@ TEST(DefectiveInput, HolesAwayFromNonManifoldElementsAreFilled) {
   const MeshTopology topology = build_topology(result.mesh);
   std::set<int> nonmanifold(topology.nonmanifold_vertices.begin(),
                             topology.nonmanifold_vertices.end());
-  for (const Edge& edge : topology.edges) {
+  for (const Edge& edge : build_edges(result.mesh, topology).edges) {
     if (edge.count > 2) nonmanifold.insert({edge.v0, edge.v1});
   }
   EXPECT_FALSE(nonmanifold.empty());

@@ -1,6 +1,7 @@
-// Adjacency of a triangle mesh: half-edges, their opposites, vertex-to-face incidence and edges.
-// Built in O(V + E): each edge grouped at its lower vertex from that vertex's faces, ranges of
-// vertices in parallel for a large mesh (the same result at any thread count); no hashing.
+// Adjacency of a triangle mesh: half-edges, their opposites and vertex-to-face incidence; the list
+// of undirected edges on request. Built in O(V + E): each edge grouped at its lower vertex from
+// that vertex's faces, ranges of vertices in parallel for a large mesh (the same result at any
+// thread count); no hashing. The topology a repair holds is 4 ints a face and 1 a vertex.
 #pragma once
 
 #include <string>
@@ -27,21 +28,12 @@ inline constexpr int kBoundary = -1;
 /// by two faces that traverse it in the same direction (inconsistent orientation).
 inline constexpr int kNonManifold = -2;
 
-/// One undirected edge and the half-edges that lie on it.
-struct Edge {
-  int v0, v1;  // v0 < v1
-  int first;   // offset into MeshTopology::edge_halfedges
-  int count;   // number of faces on the edge
-};
-
 struct MeshTopology {
   std::vector<int> opposite;  // per half-edge: the opposite half-edge, kBoundary or kNonManifold
-  std::vector<int> halfedge_edge;  // per half-edge: index into `edges`
-  std::vector<Edge> edges;
-  std::vector<int> edge_halfedges;        // grouped by edge, see Edge::first / count
   std::vector<int> vertex_face_offsets;   // CSR, size V + 1
   std::vector<int> vertex_faces;          // faces around each vertex, ascending
   std::vector<int> nonmanifold_vertices;  // vertices whose faces form more than one fan
+  int edge_count = 0;                     // undirected edges
   int nonmanifold_edge_count = 0;         // edges with more than two faces
   int misoriented_edge_count = 0;         // edges whose two faces disagree in orientation
   int duplicated_face_count = 0;          // faces on the same three vertices as an earlier one
@@ -58,6 +50,31 @@ struct MeshTopology {
 
 /// Builds the adjacency. Precondition: validate_mesh(mesh) passes.
 MeshTopology build_topology(const Mesh& mesh);
+
+/// One undirected edge and the half-edges that lie on it.
+struct Edge {
+  int v0, v1;  // v0 < v1
+  int first;   // offset into MeshEdges::edge_halfedges
+  int count;   // number of faces on the edge
+};
+
+/// The undirected edges of a mesh, ordered by (lower vertex, higher vertex), with their half-edges.
+struct MeshEdges {
+  std::vector<Edge> edges;
+  std::vector<int> edge_halfedges;  // grouped by edge, see Edge::first / count
+  std::vector<int> halfedge_edge;   // per half-edge: index into `edges`
+};
+
+/// Lists the edges of `mesh`. Precondition: `topology` was built from `mesh`.
+MeshEdges build_edges(const Mesh& mesh, const MeshTopology& topology);
+
+/// The half-edges on the undirected edge of half-edge h, h among them, ascending: h and its
+/// opposite, h alone on the boundary, two or more at a kNonManifold half-edge (found among the
+/// faces of h's source, O(valence)).
+std::vector<int> halfedges_on_edge(const Mesh& mesh, const MeshTopology& topology, int h);
+
+/// Whether h is the lowest half-edge on its edge: visiting those visits every edge once.
+bool is_first_halfedge_of_edge(const Mesh& mesh, const MeshTopology& topology, int h);
 
 /// What keeps a mesh from being a clean 2-manifold, its boundary aside.
 struct MeshDefects {

@@ -26,9 +26,9 @@ struct VertexCurvature {
 /// Precondition: validate_mesh passes and `topology` was built from `mesh`.
 VertexCurvature vertex_curvature(const Mesh& mesh, const MeshTopology& topology);
 
-/// Per edge of `topology.edges`, the angle between the normals of its two faces, in radians
+/// Per edge of `edges.edges`, the angle between the normals of its two faces, in radians
 /// (0 where the surface is flat across it, π where it folds back); 0 for an edge that does not have
 /// exactly two faces or touches a degenerate face.
-std::vector<double> dihedral_angles(const Mesh& mesh, const MeshTopology& topology);
+std::vector<double> dihedral_angles(const Mesh& mesh, const MeshEdges& edges);
 
 }  // namespace rangefill
