@@ -7,9 +7,12 @@
 #define CGAL_NO_PRECONDITIONS
 #include "rangefill/repair/fairing.h"
 
+#include <cmath>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <optional>
+#include <vector>
 
 #include <CGAL/Polygon_mesh_processing/fair.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
@@ -24,6 +27,38 @@ namespace {
 
 using namespace cgal_surface_mesh;
 namespace pmp = CGAL::Polygon_mesh_processing;
+
+// CGAL's weights for fairing (cotangents, Voronoi areas), each computed once, when first asked:
+// a row of the C2 system (L³ at a vertex) asks for the weights of its vertex's third ring some
+// 300 times over, and their computation was most of a fairing. The same numbers, faster. A copy
+// per fairing (CGAL copies it), so the weights are of that fairing's mesh.
+class FairingWeights {
+ public:
+  explicit FairingWeights(const SurfaceMesh& surface) : surface_(&surface) {}
+
+  double w_i(VertexIndex v) const {
+    return cached(vertex_weights_, v, [&] { return weights().w_i(v); });
+  }
+  double w_ij(SurfaceMesh::Halfedge_index h) const {
+    return cached(halfedge_weights_, h, [&] { return weights().w_ij(h); });
+  }
+
+ private:
+  using Weights = CGAL::Weights::Secure_cotangent_weight_with_voronoi_area<SurfaceMesh>;
+
+  Weights weights() const { return Weights(*surface_, surface_->points()); }
+
+  template <typename Index, typename Compute>
+  static double cached(std::vector<double>& cache, Index index, Compute compute) {
+    const size_t i = static_cast<size_t>(index);
+    if (i >= cache.size()) cache.resize(i + 1, std::numeric_limits<double>::quiet_NaN());
+    if (std::isnan(cache[i])) cache[i] = compute();
+    return cache[i];
+  }
+
+  const SurfaceMesh* surface_;
+  mutable std::vector<double> vertex_weights_, halfedge_weights_;
+};
 
 // The surroundings as a mesh part; nullopt when they do not form an oriented 2-manifold (the hole
 // is then not a CGAL border).
@@ -91,7 +126,8 @@ bool remesh_and_fair(SurfaceMesh& surface, size_t original_faces, size_t origina
   }
   return pmp::fair(
       surface, inner,
-      CGAL::parameters::fairing_continuity(static_cast<unsigned int>(options.continuity)));
+      CGAL::parameters::fairing_continuity(static_cast<unsigned int>(options.continuity))
+          .weight_calculator(FairingWeights(surface)));
 }
 
 }  // namespace
@@ -123,7 +159,8 @@ FillOutcome fill_by_fairing(const Mesh& mesh, const MeshTopology& topology,
       surface, border, std::back_inserter(faces), std::back_inserter(vertices),
       CGAL::parameters::use_2d_constrained_delaunay_triangulation(false)
           .density_control_factor(options.density)
-          .fairing_continuity(static_cast<unsigned int>(options.continuity))));
+          .fairing_continuity(static_cast<unsigned int>(options.continuity))
+          .weight_calculator(FairingWeights(surface))));
   if (faces.empty()) return Refused{Refusal::no_triangulation, ""};
   if (!faired) return Refused{Refusal::error, "the fairing's linear system has no solution"};
   if (options.remeshing_iterations > 0 &&
