@@ -345,6 +345,47 @@ bool merge_pass(const std::vector<const BoundaryLoop*>& loops,
   return next_pass;
 }
 
+// A pass's loops, those chosen and their fills.
+struct PassFills {
+  HoleSet holes;
+  std::vector<const BoundaryLoop*> chosen;  // into holes.loops
+  std::vector<HoleReport> reports;
+  std::vector<std::optional<Fill>> fills;
+};
+
+// Steps 1 and 2 of a pass: the mesh's loops, those chosen and their fills. The surface's topology
+// and intersection index are freed on return, before merging the fills grows the mesh's arrays
+// (the mesh, its topology and its grown arrays at once were a large repair's peak of memory).
+// The first pass also takes d_m, the restoration matrix's first row, the defects and the
+// unfillable vertices.
+PassFills fill_loops(const Mesh& mesh, int pass, const Inpainter& inpainter,
+                     const RepairOptions& options, double& mean_edge, RepairState& state,
+                     RepairResult& result) {
+  SurfaceContext surface(mesh, mean_edge);
+  if (pass == 0) {
+    mean_edge = surface.mean_edge;
+    if (!(mean_edge > 0)) throw InvalidInput("repair: the mesh has no edges");
+    result.restoration_matrix.push_back(
+        {mesh.vertex_count(), surface.topology.edge_count, mesh.face_count()});
+    result.defects = find_defects(mesh, surface.topology);
+    state.unfillable = unfillable_vertices(mesh, surface.topology);
+    const int loops = static_cast<int>(surface.holes.loops.size());
+    for (int id : options.holes) {
+      if (id < 0 || id >= loops) {
+        throw InvalidInput("repair: there is no boundary loop " + std::to_string(id) +
+                           " to fill (the mesh has " + std::to_string(loops) + ")");
+      }
+    }
+  }
+  PassFills filled;
+  filled.chosen = choose_loops(surface.holes, pass, options, state);
+  filled.reports = reports_for(filled.chosen, pass, state);
+  filled.fills = fill_pass(surface, filled.chosen, inpainter, options, pass == options.passes - 1,
+                           state, filled.reports);
+  filled.holes = std::move(surface.holes);  // the loops stay where `chosen` points
+  return filled;
+}
+
 }  // namespace
 
 RepairResult repair(const Mesh& input, const RepairOptions& options) {
@@ -360,31 +401,12 @@ RepairResult repair(Mesh&& input, const RepairOptions& options) {
   double mean_edge = 0;  // the input's d_m, used in every pass
   RepairState state;
   for (int pass = 0; pass < options.passes; ++pass) {
-    const SurfaceContext surface(mesh, mean_edge);
-    if (pass == 0) {
-      mean_edge = surface.mean_edge;
-      if (!(mean_edge > 0)) throw InvalidInput("repair: the mesh has no edges");
-      result.restoration_matrix.push_back(
-          {mesh.vertex_count(), surface.topology.edge_count, mesh.face_count()});
-      result.defects = find_defects(mesh, surface.topology);
-      state.unfillable = unfillable_vertices(mesh, surface.topology);
-      const int loops = static_cast<int>(surface.holes.loops.size());
-      for (int id : options.holes) {
-        if (id < 0 || id >= loops) {
-          throw InvalidInput("repair: there is no boundary loop " + std::to_string(id) +
-                             " to fill (the mesh has " + std::to_string(loops) + ")");
-        }
-      }
-    }
-    const std::vector<const BoundaryLoop*> chosen =
-        choose_loops(surface.holes, pass, options, state);
-    std::vector<HoleReport> reports = reports_for(chosen, pass, state);
-    const std::vector<std::optional<Fill>> fills =
-        fill_pass(surface, chosen, *inpainter, options, pass == options.passes - 1, state, reports);
-    const bool next_pass = merge_pass(chosen, fills, reports, state, result);
-    state.next_id += static_cast<int>(surface.holes.loops.size());
-    if (loops_follow_from_pass(surface.holes, next_pass)) {
-      result.open_loops = open_loops_after_pass(mesh, surface.holes, chosen, fills, state);
+    PassFills filled = fill_loops(mesh, pass, *inpainter, options, mean_edge, state, result);
+    const bool next_pass = merge_pass(filled.chosen, filled.fills, filled.reports, state, result);
+    state.next_id += static_cast<int>(filled.holes.loops.size());
+    if (loops_follow_from_pass(filled.holes, next_pass)) {
+      result.open_loops =
+          open_loops_after_pass(mesh, filled.holes, filled.chosen, filled.fills, state);
       return result;
     }
     if (!next_pass) break;  // the next pass would find no loop to choose
