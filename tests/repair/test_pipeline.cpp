@@ -592,7 +592,9 @@ void expect_open_loops_found_again(const RepairResult& result) {
     EXPECT_EQ(open.edges, static_cast<int>(loop.vertices.size()));
     EXPECT_DOUBLE_EQ(open.area, loop.area);
     // Judged in the input for a loop the options left open.
-    if (open.reason == OpenReason::failed) EXPECT_NEAR(open.area_share, loop.area_share, 1e-12);
+    if (open.reason == OpenReason::failed) {
+      EXPECT_NEAR(open.area_share, loop.area_share, 1e-12);
+    }
   }
 }
 
