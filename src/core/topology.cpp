@@ -144,12 +144,13 @@ void build_components(const Mesh& mesh, MeshTopology& topology) {
   std::vector<int> parent(mesh.face_count());
   std::iota(parent.begin(), parent.end(), 0);
   for (int h = 0; h < static_cast<int>(topology.opposite.size()); ++h) {
-    const int opposite = topology.opposite[h];
-    if (opposite == kBoundary || (opposite >= 0 && opposite < h)) continue;
-    const std::vector<int> across =
-        opposite >= 0 ? std::vector<int>{opposite} : halfedges_on_edge(mesh, topology, h);
-    for (int other : across) {
+    const auto join = [&](int other) {
       parent[find_root(parent, halfedge_face(other))] = find_root(parent, halfedge_face(h));
+    };
+    const int opposite = topology.opposite[h];
+    if (opposite > h) join(opposite);
+    if (opposite == kNonManifold) {
+      for (int other : halfedges_on_edge(mesh, topology, h)) join(other);
     }
   }
   topology.face_component.assign(mesh.face_count(), -1);
