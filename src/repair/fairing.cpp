@@ -7,16 +7,17 @@
 #define CGAL_NO_PRECONDITIONS
 #include "rangefill/repair/fairing.h"
 
-#include <cmath>
 #include <iterator>
-#include <limits>
 #include <map>
 #include <optional>
 #include <vector>
 
-#include <CGAL/Polygon_mesh_processing/fair.h>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
+#include <CGAL/Weights/cotangent_weights.h>
 
 #include "rangefill/core/errors.h"
 #include "repair/cgal_surface_mesh.h"
@@ -28,37 +29,93 @@ namespace {
 using namespace cgal_surface_mesh;
 namespace pmp = CGAL::Polygon_mesh_processing;
 
-// CGAL's weights for fairing (cotangents, Voronoi areas), each computed once, when first asked:
-// a row of the C2 system (L³ at a vertex) asks for the weights of its vertex's third ring some
-// 300 times over, and their computation was most of a fairing. The same numbers, faster. A copy
-// per fairing (CGAL copies it), so the weights are of that fairing's mesh.
-class FairingWeights {
- public:
-  explicit FairingWeights(const SurfaceMesh& surface) : surface_(&surface) {}
-
-  double w_i(VertexIndex v) const {
-    return cached(vertex_weights_, v, [&] { return weights().w_i(v); });
+// The C^k fairing of CGAL's fair() (Botsch et al., "On linear variational surface deformation
+// methods", eq. 6): the inner vertices solve L^(k+1) x = 0, the others fixed, L = M^-1 K the
+// Laplace-Beltrami operator of CGAL's cotangent weights (K) and Voronoi areas (M). Its rows
+// scaled by M, the system is (K M^-1)^k K on the inner vertices: symmetric, so an LDL^T
+// factorisation solves it, faster and in less memory than the LU factorisation of L^(k+1) in
+// CGAL's fair() (a 1 M-face repair: peak 112 -> 95 MB). The solutions agree to 1e-10 of the
+// patch's size (mesh kit, seeds 1-3). The system is a product of sparse matrices; CGAL expands
+// each row over the paths of its (k+1)-ring, some 300 weight look-ups and triplets per row at
+// C2, a tenth of the mesh kit's time. Returns whether the system solved.
+bool fair_inner_vertices(SurfaceMesh& surface, const std::vector<VertexIndex>& inner,
+                         int continuity) {
+  if (inner.empty()) return true;
+  using RowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+  const int vertex_ids = static_cast<int>(surface.num_vertices());  // removed ones included
+  const int unknowns = static_cast<int>(inner.size());
+  // The product reads K's rows and M on the vertices within k rings of the inner ones.
+  std::vector<int> column(vertex_ids, -1);
+  std::vector<char> reached(vertex_ids, 0);
+  std::vector<VertexIndex> with_rows = inner;
+  for (int i = 0; i < unknowns; ++i) {
+    column[inner[i]] = i;
+    reached[inner[i]] = 1;
   }
-  double w_ij(SurfaceMesh::Halfedge_index h) const {
-    return cached(halfedge_weights_, h, [&] { return weights().w_ij(h); });
+  size_t ring_begin = 0;
+  for (int ring = 0; ring < continuity; ++ring) {
+    const size_t ring_end = with_rows.size();
+    for (size_t k = ring_begin; k < ring_end; ++k) {
+      for (VertexIndex u : surface.vertices_around_target(surface.halfedge(with_rows[k]))) {
+        if (!reached[u]) {
+          reached[u] = 1;
+          with_rows.push_back(u);
+        }
+      }
+    }
+    ring_begin = ring_end;
+  }
+  const CGAL::Weights::Secure_cotangent_weight_with_voronoi_area<SurfaceMesh> weights(
+      surface, surface.points());
+  Eigen::VectorXd inverse_area = Eigen::VectorXd::Zero(vertex_ids);  // M^-1
+  std::vector<Eigen::Triplet<double>> entries;
+  for (VertexIndex v : with_rows) {
+    inverse_area[v] = weights.w_i(v);
+    double sum = 0;
+    for (auto h : surface.halfedges_around_target(surface.halfedge(v))) {
+      // Of the edge, whichever half-edge asks: K stays symmetric to the last bit.
+      const double w_ij = weights.w_ij(std::min(h, surface.opposite(h)));
+      sum += w_ij;
+      entries.emplace_back(v, surface.source(h), -w_ij);
+    }
+    entries.emplace_back(v, v, sum);
+  }
+  RowMatrix stiffness(vertex_ids, vertex_ids);  // K
+  stiffness.setFromTriplets(entries.begin(), entries.end());
+  RowMatrix rows(unknowns, vertex_ids);  // (K M^-1)^k K on the inner rows
+  entries.clear();
+  for (int i = 0; i < unknowns; ++i) entries.emplace_back(i, inner[i], 1.0);
+  rows.setFromTriplets(entries.begin(), entries.end());
+  rows = rows * stiffness;
+  for (int power = 0; power < continuity; ++power) {
+    rows = rows * inverse_area.asDiagonal() * stiffness;
   }
 
- private:
-  using Weights = CGAL::Weights::Secure_cotangent_weight_with_voronoi_area<SurfaceMesh>;
-
-  Weights weights() const { return Weights(*surface_, surface_->points()); }
-
-  template <typename Index, typename Compute>
-  static double cached(std::vector<double>& cache, Index index, Compute compute) {
-    const size_t i = static_cast<size_t>(index);
-    if (i >= cache.size()) cache.resize(i + 1, std::numeric_limits<double>::quiet_NaN());
-    if (std::isnan(cache[i])) cache[i] = compute();
-    return cache[i];
+  // The fixed vertices' terms to the right-hand side.
+  entries.clear();
+  Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(unknowns, 3);
+  for (int i = 0; i < unknowns; ++i) {
+    for (RowMatrix::InnerIterator it(rows, i); it; ++it) {
+      const VertexIndex v(static_cast<SurfaceMesh::size_type>(it.col()));
+      if (column[v] >= 0) {
+        entries.emplace_back(i, column[v], it.value());
+      } else {
+        const auto& p = surface.point(v);
+        rhs.row(i) -= it.value() * Eigen::RowVector3d(p.x(), p.y(), p.z());
+      }
+    }
   }
-
-  const SurfaceMesh* surface_;
-  mutable std::vector<double> vertex_weights_, halfedge_weights_;
-};
+  Eigen::SparseMatrix<double> system(unknowns, unknowns);
+  system.setFromTriplets(entries.begin(), entries.end());
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(system);
+  if (solver.info() != Eigen::Success) return false;
+  const Eigen::MatrixX3d solution = solver.solve(rhs);
+  if (solver.info() != Eigen::Success || !solution.allFinite()) return false;
+  for (int i = 0; i < unknowns; ++i) {
+    surface.point(inner[i]) = {solution(i, 0), solution(i, 1), solution(i, 2)};
+  }
+  return true;
+}
 
 // The surroundings as a mesh part; nullopt when they do not form an oriented 2-manifold (the hole
 // is then not a CGAL border).
@@ -124,10 +181,7 @@ bool remesh_and_fair(SurfaceMesh& surface, size_t original_faces, size_t origina
   for (VertexIndex v : surface.vertices()) {
     if (static_cast<size_t>(v) >= original_vertices) inner.push_back(v);
   }
-  return pmp::fair(
-      surface, inner,
-      CGAL::parameters::fairing_continuity(static_cast<unsigned int>(options.continuity))
-          .weight_calculator(FairingWeights(surface)));
+  return fair_inner_vertices(surface, inner, options.continuity);
 }
 
 }  // namespace
@@ -155,14 +209,13 @@ FillOutcome fill_by_fairing(const Mesh& mesh, const MeshTopology& topology,
   }
   std::vector<FaceIndex> faces;
   std::vector<VertexIndex> vertices;
-  const bool faired = std::get<0>(pmp::triangulate_refine_and_fair_hole(
+  pmp::triangulate_and_refine_hole(
       surface, border, std::back_inserter(faces), std::back_inserter(vertices),
-      CGAL::parameters::use_2d_constrained_delaunay_triangulation(false)
-          .density_control_factor(options.density)
-          .fairing_continuity(static_cast<unsigned int>(options.continuity))
-          .weight_calculator(FairingWeights(surface))));
+      CGAL::parameters::use_2d_constrained_delaunay_triangulation(false).density_control_factor(
+          options.density));
   if (faces.empty()) return Refused{Refusal::no_triangulation, ""};
-  if (!faired) return Refused{Refusal::error, "the fairing's linear system has no solution"};
+  if (!fair_inner_vertices(surface, vertices, options.continuity))
+    return Refused{Refusal::error, "the fairing's linear system has no solution"};
   if (options.remeshing_iterations > 0 &&
       !remesh_and_fair(surface, original_faces, part->global.size(), mean_edge, options)) {
     return Refused{Refusal::error, "the fairing of the remeshed patch has no solution"};
