@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <optional>
 
 #include "rangefill/core/parallel.h"
 
@@ -17,33 +18,42 @@ int find_root(std::vector<int>& parent, int x) {
   return x;
 }
 
-// Vertex-to-face incidence in CSR form, faces ascending.
-void build_vertex_faces(const Mesh& mesh, MeshTopology& topology) {
-  const int vertex_count = mesh.vertex_count();
-  topology.vertex_face_offsets.assign(static_cast<size_t>(vertex_count) + 1, 0);
+// Vertex-to-face incidence in CSR form, faces ascending: what the build reads, and lists for the
+// vertices no walk serves.
+struct VertexFaces {
+  std::vector<int> offsets;  // size V + 1
+  std::vector<int> faces;
+  const int* begin(int v) const { return faces.data() + offsets[v]; }
+  const int* end(int v) const { return faces.data() + offsets[v + 1]; }
+};
+
+VertexFaces vertex_faces(const Mesh& mesh) {
+  VertexFaces incidence;
+  incidence.offsets.assign(static_cast<size_t>(mesh.vertex_count()) + 1, 0);
   for (const Triangle& t : mesh.triangles) {
-    for (int v : t) ++topology.vertex_face_offsets[v + 1];
+    for (int v : t) ++incidence.offsets[v + 1];
   }
-  std::partial_sum(topology.vertex_face_offsets.begin(), topology.vertex_face_offsets.end(),
-                   topology.vertex_face_offsets.begin());
-  topology.vertex_faces.resize(topology.vertex_face_offsets.back());
-  std::vector<int> cursor(topology.vertex_face_offsets.begin(),
-                          topology.vertex_face_offsets.end() - 1);
+  std::partial_sum(incidence.offsets.begin(), incidence.offsets.end(), incidence.offsets.begin());
+  incidence.faces.resize(incidence.offsets.back());
+  std::vector<int> cursor(incidence.offsets.begin(), incidence.offsets.end() - 1);
   for (int f = 0; f < mesh.face_count(); ++f) {
-    for (int v : mesh.triangles[f]) topology.vertex_faces[cursor[v]++] = f;
+    for (int v : mesh.triangles[f]) incidence.faces[cursor[v]++] = f;
   }
+  return incidence;
 }
+
+constexpr auto halfedge_source = &MeshTopology::halfedge_source;
+constexpr auto halfedge_target = &MeshTopology::halfedge_target;
 
 // The half-edges of v's faces on the edges whose lower end is v, as (higher end, half-edge),
 // sorted: each run of one higher end is an edge, its half-edges ascending.
-void upward_halfedges(const Mesh& mesh, const MeshTopology& topology, int v,
+void upward_halfedges(const Mesh& mesh, const VertexFaces& incidence, int v,
                       std::vector<std::pair<int, int>>& upward) {
   upward.clear();
-  for (int i = topology.faces_of_vertex_begin(v); i < topology.faces_of_vertex_end(v); ++i) {
-    const int face = topology.vertex_faces[i];
-    for (int h = 3 * face; h < 3 * face + 3; ++h) {
-      const int source = topology.halfedge_source(mesh, h);
-      const int target = topology.halfedge_target(mesh, h);
+  for (const int* face = incidence.begin(v); face != incidence.end(v); ++face) {
+    for (int h = 3 * *face; h < 3 * *face + 3; ++h) {
+      const int source = halfedge_source(mesh, h);
+      const int target = halfedge_target(mesh, h);
       if (std::min(source, target) == v) upward.emplace_back(std::max(source, target), h);
     }
   }
@@ -94,18 +104,18 @@ struct EdgeCounts {
 
 // Pairs the opposite half-edges of the edges whose lower end is in [first_vertex, last_vertex)
 // and counts those edges.
-EdgeCounts pair_opposites_of_range(const Mesh& mesh, MeshTopology& topology, int first_vertex,
-                                   int last_vertex) {
+EdgeCounts pair_opposites_of_range(const Mesh& mesh, const VertexFaces& incidence,
+                                   MeshTopology& topology, int first_vertex, int last_vertex) {
   EdgeCounts counts;
   std::vector<std::pair<int, int>> upward;
   for (int v = first_vertex; v < last_vertex; ++v) {
-    upward_halfedges(mesh, topology, v, upward);
+    upward_halfedges(mesh, incidence, v, upward);
     for_each_edge_run(upward, [&](size_t begin, size_t end) {
       ++counts.edges;
       counts.duplicated_faces += duplicated_faces(mesh, upward, begin, end);
       if (end - begin == 2) {
         const int a = upward[begin].second, b = upward[begin + 1].second;
-        if (topology.halfedge_source(mesh, a) == topology.halfedge_target(mesh, b)) {
+        if (halfedge_source(mesh, a) == halfedge_target(mesh, b)) {
           topology.opposite[a] = b;
           topology.opposite[b] = a;
         } else {
@@ -123,12 +133,12 @@ EdgeCounts pair_opposites_of_range(const Mesh& mesh, MeshTopology& topology, int
 
 // Pairs opposite half-edges and counts the edges: ranges of vertices in parallel, each writing the
 // half-edges of its own edges (the same at any thread count).
-void pair_opposites(const Mesh& mesh, MeshTopology& topology) {
+void pair_opposites(const Mesh& mesh, const VertexFaces& incidence, MeshTopology& topology) {
   topology.opposite.assign(3 * static_cast<size_t>(mesh.face_count()), kBoundary);
   const int vertices = mesh.vertex_count();
   std::vector<EdgeCounts> ranges(kMeshRanges);
   parallel_for(kMeshRanges, mesh_pass_threads(mesh.face_count()), [&](int r) {
-    ranges[r] = pair_opposites_of_range(mesh, topology, range_begin(vertices, r),
+    ranges[r] = pair_opposites_of_range(mesh, incidence, topology, range_begin(vertices, r),
                                         range_begin(vertices, r + 1));
   });
   for (const EdgeCounts& range : ranges) {
@@ -139,8 +149,117 @@ void pair_opposites(const Mesh& mesh, MeshTopology& topology) {
   }
 }
 
-// Components of faces joined through manifold edges (and misoriented or non-manifold ones).
-void build_components(const Mesh& mesh, MeshTopology& topology) {
+// The half-edge leaving v in `face`.
+int halfedge_leaving(const Mesh& mesh, int face, int v) {
+  int h = 3 * face;
+  while (halfedge_source(mesh, h) != v) ++h;
+  return h;
+}
+
+// The half-edges on h's edge among the faces [first, last), ascending when they are (they must
+// hold every face on the edge: those of one of its ends).
+std::vector<int> halfedges_on_edge_among(const Mesh& mesh, int h, const int* first,
+                                         const int* last) {
+  const int source = halfedge_source(mesh, h), target = halfedge_target(mesh, h);
+  std::vector<int> on_edge;
+  for (const int* face = first; face != last; ++face) {
+    for (int g = 3 * *face; g < 3 * *face + 3; ++g) {
+      const int a = halfedge_source(mesh, g), b = halfedge_target(mesh, g);
+      if ((a == source && b == target) || (a == target && b == source)) on_edge.push_back(g);
+    }
+  }
+  return on_edge;
+}
+
+// The fans of faces around vertex v, its faces [first, last) (ascending): its faces linked through
+// the two-face edges at v. `parent` is scratch space.
+int count_fans(const Mesh& mesh, const MeshTopology& topology, int v, const int* first,
+               const int* last, std::vector<int>& parent) {
+  const int degree = static_cast<int>(last - first);
+  parent.resize(degree);
+  std::iota(parent.begin(), parent.end(), 0);
+  int fans = degree;
+  for (int i = 0; i < degree; ++i) {
+    const int h = halfedge_leaving(mesh, first[i], v);
+    // The two edges of the face at v are the one leaving v and the one entering it.
+    for (int at_v : {h, prev_halfedge(h)}) {
+      int across = topology.opposite[at_v];
+      if (across == kNonManifold) {  // linked too when its edge has two misoriented faces
+        const std::vector<int> on_edge = halfedges_on_edge_among(mesh, at_v, first, last);
+        across = on_edge.size() == 2 ? on_edge[on_edge[0] == at_v] : kBoundary;
+      }
+      if (across < 0) continue;
+      const int a = find_root(parent, i);
+      const int b = find_root(
+          parent, static_cast<int>(std::lower_bound(first, last, halfedge_face(across)) - first));
+      if (a != b) {
+        parent[a] = b;
+        --fans;
+      }
+    }
+  }
+  return fans;
+}
+
+// Where the walk round each vertex starts, and the vertices no walk serves (their faces listed);
+// those of several fans (a pinch, or faces meeting at a non-manifold edge) are non-manifold.
+// Ranges of vertices in parallel, joined in order.
+void find_vertex_walks(const Mesh& mesh, const VertexFaces& incidence, MeshTopology& topology) {
+  const int vertices = mesh.vertex_count();
+  topology.vertex_halfedge.assign(vertices, kNoFaces);
+  struct Irregular {
+    std::vector<int> listed, nonmanifold;
+  };
+  std::vector<Irregular> found(kMeshRanges);
+  parallel_for(kMeshRanges, mesh_pass_threads(mesh.face_count()), [&](int r) {
+    std::vector<int> parent;
+    for (int v = range_begin(vertices, r); v < range_begin(vertices, r + 1); ++v) {
+      const int* first = incidence.begin(v);
+      const int* last = incidence.end(v);
+      if (first == last) continue;
+      const int start = halfedge_leaving(mesh, *first, v);
+      int reached = 0;
+      for_each_face_of_fan(topology, start, [&](int) { ++reached; });
+      if (reached == last - first) {  // distinct faces: a walk visits each half-edge once
+        topology.vertex_halfedge[v] = start;
+        continue;
+      }
+      topology.vertex_halfedge[v] = kListedFaces;
+      found[r].listed.push_back(v);
+      if (count_fans(mesh, topology, v, first, last, parent) > 1) found[r].nonmanifold.push_back(v);
+    }
+  });
+  topology.listed_face_offsets.push_back(0);
+  for (const Irregular& range : found) {
+    for (int v : range.listed) {
+      topology.listed_vertices.push_back(v);
+      topology.listed_faces.insert(topology.listed_faces.end(), incidence.begin(v),
+                                   incidence.end(v));
+      topology.listed_face_offsets.push_back(static_cast<int>(topology.listed_faces.size()));
+    }
+    topology.nonmanifold_vertices.insert(topology.nonmanifold_vertices.end(),
+                                         range.nonmanifold.begin(), range.nonmanifold.end());
+  }
+}
+
+}  // namespace
+
+MeshTopology build_topology(const Mesh& mesh) {
+  MeshTopology topology;
+  const VertexFaces incidence = vertex_faces(mesh);
+  pair_opposites(mesh, incidence, topology);
+  find_vertex_walks(mesh, incidence, topology);
+  return topology;
+}
+
+std::vector<int> faces_of_vertex(const MeshTopology& topology, int v) {
+  std::vector<int> faces;
+  for_each_face_of_vertex(topology, v, [&](int face) { faces.push_back(face); });
+  std::sort(faces.begin(), faces.end());
+  return faces;
+}
+
+FaceComponents face_components(const Mesh& mesh, const MeshTopology& topology) {
   std::vector<int> parent(mesh.face_count());
   std::iota(parent.begin(), parent.end(), 0);
   for (int h = 0; h < static_cast<int>(topology.opposite.size()); ++h) {
@@ -153,103 +272,15 @@ void build_components(const Mesh& mesh, MeshTopology& topology) {
       for (int other : halfedges_on_edge(mesh, topology, h)) join(other);
     }
   }
-  topology.face_component.assign(mesh.face_count(), -1);
+  FaceComponents components;  // numbered in the order of their first faces
+  components.of_face.resize(mesh.face_count());
   std::vector<int> root_component(mesh.face_count(), -1);
-  topology.component_count = 0;
   for (int f = 0; f < mesh.face_count(); ++f) {
     const int root = find_root(parent, f);
-    if (root_component[root] < 0) root_component[root] = topology.component_count++;
-    topology.face_component[f] = root_component[root];
+    if (root_component[root] < 0) root_component[root] = components.count++;
+    components.of_face[f] = root_component[root];
   }
-}
-
-// The faces around vertex v reached from its first face by crossing manifold edges at v, both
-// ways round (at most all of them).
-int faces_in_first_fan(const Mesh& mesh, const MeshTopology& topology, int v) {
-  const int first = topology.vertex_faces[topology.vertex_face_offsets[v]];
-  int leaving = 3 * first;  // the half-edge of `first` that leaves v
-  while (topology.halfedge_source(mesh, leaving) != v) ++leaving;
-  const int degree = topology.vertex_face_offsets[v + 1] - topology.vertex_face_offsets[v];
-  int count = 1;
-  // Against the orientation: across the edge entering v, to the face where it leaves v.
-  for (int h = topology.opposite[prev_halfedge(leaving)]; h >= 0 && count <= degree;
-       h = topology.opposite[prev_halfedge(h)]) {
-    if (halfedge_face(h) == first) return count;  // closed round
-    ++count;
-  }
-  // With the orientation: across the edge leaving v, to the face where it enters v.
-  for (int h = topology.opposite[leaving]; h >= 0 && count <= degree;
-       h = topology.opposite[next_halfedge(h)]) {
-    ++count;
-  }
-  return count;
-}
-
-// The fans of faces around vertex v: its faces linked through the two-face edges at v. `parent` is
-// scratch space. One walk round v settles the common case (a single fan through manifold edges).
-int count_fans(const Mesh& mesh, const MeshTopology& topology, int v, std::vector<int>& parent) {
-  const int begin = topology.vertex_face_offsets[v];
-  const int end = topology.vertex_face_offsets[v + 1];
-  if (begin == end) return 0;
-  if (faces_in_first_fan(mesh, topology, v) == end - begin) return 1;
-  parent.resize(end - begin);
-  std::iota(parent.begin(), parent.end(), 0);
-  int fans = end - begin;
-  for (int i = begin; i < end; ++i) {
-    const int face = topology.vertex_faces[i];
-    for (int corner = 0; corner < 3; ++corner) {
-      const int h = 3 * face + corner;
-      if (topology.halfedge_source(mesh, h) != v) continue;
-      // The two edges of `face` at v are the one leaving v and the one entering it.
-      for (int at_v : {h, prev_halfedge(h)}) {
-        int across = topology.opposite[at_v];
-        if (across == kNonManifold) {  // linked too when its edge has two misoriented faces
-          const std::vector<int> on_edge = halfedges_on_edge(mesh, topology, at_v);
-          across = on_edge.size() == 2 ? on_edge[on_edge[0] == at_v] : kBoundary;
-        }
-        if (across < 0) continue;
-        const int neighbour = halfedge_face(across);
-        const auto other = std::lower_bound(topology.vertex_faces.begin() + begin,
-                                            topology.vertex_faces.begin() + end, neighbour);
-        const int a = find_root(parent, i - begin);
-        const int b =
-            find_root(parent, static_cast<int>(other - topology.vertex_faces.begin()) - begin);
-        if (a != b) {
-          parent[a] = b;
-          --fans;
-        }
-      }
-    }
-  }
-  return fans;
-}
-
-// A vertex is non-manifold when its faces form more than one fan (a pinch, or faces meeting at a
-// non-manifold edge). Ranges of vertices in parallel, joined in order.
-void find_nonmanifold_vertices(const Mesh& mesh, MeshTopology& topology) {
-  const int vertices = mesh.vertex_count();
-  std::vector<std::vector<int>> found(kMeshRanges);
-  parallel_for(kMeshRanges, mesh_pass_threads(mesh.face_count()), [&](int r) {
-    std::vector<int> parent;
-    for (int v = range_begin(vertices, r); v < range_begin(vertices, r + 1); ++v) {
-      if (count_fans(mesh, topology, v, parent) > 1) found[r].push_back(v);
-    }
-  });
-  for (const std::vector<int>& vertices : found) {
-    topology.nonmanifold_vertices.insert(topology.nonmanifold_vertices.end(), vertices.begin(),
-                                         vertices.end());
-  }
-}
-
-}  // namespace
-
-MeshTopology build_topology(const Mesh& mesh) {
-  MeshTopology topology;
-  build_vertex_faces(mesh, topology);
-  pair_opposites(mesh, topology);
-  build_components(mesh, topology);
-  find_nonmanifold_vertices(mesh, topology);
-  return topology;
+  return components;
 }
 
 MeshEdges build_edges(const Mesh& mesh, const MeshTopology& topology) {
@@ -257,9 +288,10 @@ MeshEdges build_edges(const Mesh& mesh, const MeshTopology& topology) {
   edges.edges.reserve(topology.edge_count);
   edges.edge_halfedges.reserve(topology.opposite.size());
   edges.halfedge_edge.assign(topology.opposite.size(), -1);
+  const VertexFaces incidence = vertex_faces(mesh);
   std::vector<std::pair<int, int>> upward;
   for (int v = 0; v < mesh.vertex_count(); ++v) {
-    upward_halfedges(mesh, topology, v, upward);
+    upward_halfedges(mesh, incidence, v, upward);
     for_each_edge_run(upward, [&](size_t begin, size_t end) {
       const int edge = static_cast<int>(edges.edges.size());
       edges.edges.push_back({v, upward[begin].first, static_cast<int>(edges.edge_halfedges.size()),
@@ -277,18 +309,8 @@ std::vector<int> halfedges_on_edge(const Mesh& mesh, const MeshTopology& topolog
   const int opposite = topology.opposite[h];
   if (opposite == kBoundary) return {h};
   if (opposite >= 0) return {std::min(h, opposite), std::max(h, opposite)};
-  const int source = topology.halfedge_source(mesh, h);
-  const int target = topology.halfedge_target(mesh, h);
-  std::vector<int> on_edge;
-  for (int i = topology.faces_of_vertex_begin(source); i < topology.faces_of_vertex_end(source);
-       ++i) {
-    const int face = topology.vertex_faces[i];
-    for (int g = 3 * face; g < 3 * face + 3; ++g) {
-      const int a = topology.halfedge_source(mesh, g), b = topology.halfedge_target(mesh, g);
-      if ((a == source && b == target) || (a == target && b == source)) on_edge.push_back(g);
-    }
-  }
-  return on_edge;
+  const std::vector<int> faces = faces_of_vertex(topology, halfedge_source(mesh, h));
+  return halfedges_on_edge_among(mesh, h, faces.data(), faces.data() + faces.size());
 }
 
 bool is_first_halfedge_of_edge(const Mesh& mesh, const MeshTopology& topology, int h) {
@@ -300,25 +322,19 @@ bool is_first_halfedge_of_edge(const Mesh& mesh, const MeshTopology& topology, i
 
 Vec3 vertex_normal(const Mesh& mesh, const MeshTopology& topology, int v) {
   Vec3 normal = Vec3::Zero();  // summed in face order, as vertex_normals_from_faces does
-  for (int i = topology.faces_of_vertex_begin(v); i < topology.faces_of_vertex_end(v); ++i) {
-    normal += triangle_cross(mesh, topology.vertex_faces[i]);
-  }
+  for (int face : faces_of_vertex(topology, v)) normal += triangle_cross(mesh, face);
   const double length = normal.norm();
   if (length > 0) normal /= length;
   return normal;
 }
 
 int find_halfedge(const Mesh& mesh, const MeshTopology& topology, int from, int to) {
-  for (int i = topology.faces_of_vertex_begin(from); i < topology.faces_of_vertex_end(from); ++i) {
-    const int face = topology.vertex_faces[i];
-    for (int corner = 0; corner < 3; ++corner) {
-      const int h = 3 * face + corner;
-      if (topology.halfedge_source(mesh, h) == from && topology.halfedge_target(mesh, h) == to) {
-        return h;
-      }
-    }
-  }
-  return -1;
+  int first = -1;
+  for_each_face_of_vertex(topology, from, [&](int face) {
+    const int h = halfedge_leaving(mesh, face, from);
+    if (halfedge_target(mesh, h) == to && (first < 0 || h < first)) first = h;
+  });
+  return first;
 }
 
 }  // namespace rangefill
@@ -373,22 +389,21 @@ std::vector<int> unfillable_vertices(const Mesh& mesh, const MeshTopology& topol
   // Elsewhere a vertex of several fans, each open (one boundary half-edge leaves it), all of one
   // component, is where loops touch: fills of those loops join its fans into one.
   std::vector<int> parent;
+  std::optional<FaceComponents> components;  // when first asked
   for (int v : topology.nonmanifold_vertices) {
     if (unfillable[v]) continue;
+    if (!components) components = face_components(mesh, topology);
+    const std::vector<int> faces = faces_of_vertex(topology, v);
     int leaving_boundary = 0;
     bool one_component = true;
-    const int first_face = topology.vertex_faces[topology.faces_of_vertex_begin(v)];
-    for (int i = topology.faces_of_vertex_begin(v); i < topology.faces_of_vertex_end(v); ++i) {
-      const int face = topology.vertex_faces[i];
+    for (int face : faces) {
       one_component =
-          one_component && topology.face_component[face] == topology.face_component[first_face];
-      for (int corner = 0; corner < 3; ++corner) {
-        const int h = 3 * face + corner;
-        leaving_boundary +=
-            topology.halfedge_source(mesh, h) == v && topology.opposite[h] == kBoundary;
-      }
+          one_component && components->of_face[face] == components->of_face[faces.front()];
+      leaving_boundary += topology.opposite[halfedge_leaving(mesh, face, v)] == kBoundary;
     }
-    unfillable[v] = !one_component || leaving_boundary != count_fans(mesh, topology, v, parent);
+    unfillable[v] =
+        !one_component || leaving_boundary != count_fans(mesh, topology, v, faces.data(),
+                                                         faces.data() + faces.size(), parent);
   }
   std::vector<int> vertices;
   for (int v = 0; v < mesh.vertex_count(); ++v) {

@@ -30,9 +30,7 @@ Zone faces_around(const Mesh& mesh, const MeshTopology& topology, int centre, do
   };
   std::vector<char> seen(mesh.face_count(), 0);
   std::vector<int> faces;
-  for (int i = topology.faces_of_vertex_begin(centre); i < topology.faces_of_vertex_end(centre);
-       ++i) {
-    const int face = topology.vertex_faces[i];
+  for (int face : faces_of_vertex(topology, centre)) {
     if (!seen[face] && near(face)) {
       seen[face] = 1;
       faces.push_back(face);

@@ -121,14 +121,14 @@ std::vector<int> faces_within(const Mesh& mesh, const MeshTopology& topology,
   std::vector<int> region;
   for (const auto& [v, d] : distance) {
     if (d >= radius) continue;
-    for (int i = topology.faces_of_vertex_begin(v); i < topology.faces_of_vertex_end(v); ++i) {
-      const Triangle& t = mesh.triangles[topology.vertex_faces[i]];
+    for_each_face_of_vertex(topology, v, [&](int face) {
+      const Triangle& t = mesh.triangles[face];
       const bool inside = std::all_of(t.begin(), t.end(), [&](int w) {
         const auto found = distance.find(w);
         return found != distance.end() && found->second < radius;
       });
-      if (inside) region.push_back(topology.vertex_faces[i]);
-    }
+      if (inside) region.push_back(face);
+    });
   }
   std::sort(region.begin(), region.end());
   region.erase(std::unique(region.begin(), region.end()), region.end());

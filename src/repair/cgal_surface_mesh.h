@@ -26,12 +26,11 @@ inline std::vector<int> faces_around(const MeshTopology& topology, const Mesh& m
   for (int ring = 0; ring < rings; ++ring) {
     std::set<int> reached;
     for (int v : front) {
-      for (int k = topology.faces_of_vertex_begin(v); k < topology.faces_of_vertex_end(v); ++k) {
-        const int face = topology.vertex_faces[k];
+      for_each_face_of_vertex(topology, v, [&](int face) {
         if (faces.insert(face).second) {
           for (int corner : mesh.triangles[face]) reached.insert(corner);
         }
-      }
+      });
     }
     front = std::move(reached);
   }

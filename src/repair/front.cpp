@@ -38,12 +38,12 @@ class Front {
     for (int k = 0; k < n; ++k) position_on_hole.emplace(hole.vertices[k], k);
     for (int k = 0; k < n; ++k) {
       const int v = hole.vertices[k];
-      for (int i = topology.faces_of_vertex_begin(v); i < topology.faces_of_vertex_end(v); ++i) {
-        for (int w : mesh.triangles[topology.vertex_faces[i]]) {
+      for_each_face_of_vertex(topology, v, [&](int face) {
+        for (int w : mesh.triangles[face]) {
           const auto other = position_on_hole.find(w);
           if (other != position_on_hole.end() && other->second != k) add_edge(k, other->second);
         }
-      }
+      });
     }
     const double perimeter = edge_length_ * n;
     const double disk_area = perimeter * perimeter / (4 * M_PI);

@@ -16,9 +16,10 @@ double ccw_angle(const Vec3& reference, const Vec3& direction, const Vec3& norma
 // The boundary half-edges of a mesh, followed from one to the next round each loop.
 class BoundaryWalk {
  public:
-  BoundaryWalk(const Mesh& mesh, const MeshTopology& topology)
+  BoundaryWalk(const Mesh& mesh, const MeshTopology& topology, const FaceComponents& components)
       : mesh_(mesh),
         topology_(topology),
+        components_(components),
         visited_(topology.opposite.size(), 0),
         boundary_degree_(mesh.vertex_count(), 0),
         out_offsets_(mesh.vertex_count() + 1, 0) {
@@ -71,10 +72,10 @@ class BoundaryWalk {
   int next_on_loop(int h, int start) const {
     const int a = topology_.halfedge_source(mesh_, h), b = topology_.halfedge_target(mesh_, h);
     // A loop stays within the component of its faces.
-    const int component = topology_.face_component[halfedge_face(h)];
+    const int component = components_.of_face[halfedge_face(h)];
     auto available = [&](int candidate) {
       return (!visited_[candidate] || candidate == start) &&
-             topology_.face_component[halfedge_face(candidate)] == component;
+             components_.of_face[halfedge_face(candidate)] == component;
     };
     if (boundary_degree_[b] == 1) {
       const int only = out_halfedges_[out_offsets_[b]];
@@ -100,6 +101,7 @@ class BoundaryWalk {
 
   const Mesh& mesh_;
   const MeshTopology& topology_;
+  const FaceComponents& components_;
   std::vector<char> visited_;
   std::vector<int> boundary_degree_;
   std::vector<int> out_offsets_, out_halfedges_;
@@ -107,10 +109,10 @@ class BoundaryWalk {
 
 // The loop of a closed walk: its vertices, perimeter and vector area (eq. 1).
 BoundaryLoop loop_of(const Mesh& mesh, const MeshTopology& topology,
-                     const std::vector<int>& halfedges, int id) {
+                     const FaceComponents& components, const std::vector<int>& halfedges, int id) {
   BoundaryLoop loop;
   loop.id = id;
-  loop.component = topology.face_component[halfedge_face(halfedges.front())];
+  loop.component = components.of_face[halfedge_face(halfedges.front())];
   Vec3 vector_area = Vec3::Zero();
   for (int e : halfedges) {
     const Vec3& p = mesh.positions[topology.halfedge_source(mesh, e)];
@@ -127,7 +129,8 @@ BoundaryLoop loop_of(const Mesh& mesh, const MeshTopology& topology,
 
 HoleSet find_holes(const Mesh& mesh, const MeshTopology& topology) {
   HoleSet holes;
-  BoundaryWalk walk(mesh, topology);
+  const FaceComponents components = face_components(mesh, topology);
+  BoundaryWalk walk(mesh, topology, components);
   holes.pinched_vertices = walk.pinched_vertices();
   for (int start = 0; start < static_cast<int>(topology.opposite.size()); ++start) {
     if (topology.opposite[start] != kBoundary || walk.walked(start)) continue;
@@ -135,14 +138,14 @@ HoleSet find_holes(const Mesh& mesh, const MeshTopology& topology) {
     const std::vector<int> halfedges = walk.walk(start, closed);
     if (closed) {
       holes.loops.push_back(
-          loop_of(mesh, topology, halfedges, static_cast<int>(holes.loops.size())));
+          loop_of(mesh, topology, components, halfedges, static_cast<int>(holes.loops.size())));
     } else {
       holes.open_boundary_edges += static_cast<int>(halfedges.size());
     }
   }
-  holes.component_areas.assign(topology.component_count, 0.0);
+  holes.component_areas.assign(components.count, 0.0);
   for (int f = 0; f < mesh.face_count(); ++f) {
-    holes.component_areas[topology.face_component[f]] += 0.5 * triangle_cross(mesh, f).norm();
+    holes.component_areas[components.of_face[f]] += 0.5 * triangle_cross(mesh, f).norm();
   }
   for (BoundaryLoop& loop : holes.loops) {
     const double total = holes.component_areas[loop.component];

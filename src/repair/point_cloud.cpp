@@ -123,8 +123,7 @@ void orient(const std::vector<Vec3>& positions, const std::vector<Vec3>& normals
 // The faces around pinched vertex v (whose faces form several fans) that are not in its largest
 // fan (the first of the largest).
 std::vector<int> smaller_fans(const Mesh& mesh, const MeshTopology& topology, int v) {
-  std::vector<int> faces(topology.vertex_faces.begin() + topology.faces_of_vertex_begin(v),
-                         topology.vertex_faces.begin() + topology.faces_of_vertex_end(v));
+  const std::vector<int> faces = faces_of_vertex(topology, v);
   std::vector<int> fan(faces.size());
   std::iota(fan.begin(), fan.end(), 0);
   std::function<int(int)> root = [&](int i) { return fan[i] == i ? i : fan[i] = root(fan[i]); };

@@ -45,13 +45,12 @@ void close_slivers(const Mesh& mesh, const MeshTopology& topology,
                    const std::unordered_map<int, Vec3>& diffused,
                    std::unordered_set<int>& zone_faces) {
   for (const auto& [v, normal] : diffused) {
-    for (int i = topology.faces_of_vertex_begin(v); i < topology.faces_of_vertex_end(v); ++i) {
-      const int face = topology.vertex_faces[i];
+    for_each_face_of_vertex(topology, v, [&](int face) {
       const Triangle& t = mesh.triangles[face];
       if (diffused.count(t[0]) && diffused.count(t[1]) && diffused.count(t[2])) {
         zone_faces.insert(face);
       }
-    }
+    });
   }
 }
 
@@ -89,11 +88,9 @@ Zone grow_zone(const Mesh& mesh, const MeshTopology& topology, const HoleSet& ho
     const std::unordered_set<int> is_search(search.begin(), search.end());
     std::vector<int> candidates;
     for (int v : search) {
-      for (int i = topology.faces_of_vertex_begin(v); i < topology.faces_of_vertex_end(v); ++i) {
-        if (!zone_faces.count(topology.vertex_faces[i])) {
-          candidates.push_back(topology.vertex_faces[i]);
-        }
-      }
+      for_each_face_of_vertex(topology, v, [&](int face) {
+        if (!zone_faces.count(face)) candidates.push_back(face);
+      });
     }
     std::vector<int> next_search;
     bool grew = false;

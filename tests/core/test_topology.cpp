@@ -21,7 +21,7 @@ TEST(Topology, PairsTheHalfEdgesOfAClosedMesh) {
   const Mesh cube = make_cube();
   const MeshTopology topology = build_topology(cube);
   EXPECT_EQ(topology.edge_count, 18);
-  EXPECT_EQ(topology.component_count, 1);
+  EXPECT_EQ(face_components(cube, topology).count, 1);
   EXPECT_EQ(topology.nonmanifold_edge_count, 0);
   EXPECT_TRUE(topology.nonmanifold_vertices.empty());
   for (int h = 0; h < 3 * cube.face_count(); ++h) {
@@ -32,7 +32,7 @@ TEST(Topology, PairsTheHalfEdgesOfAClosedMesh) {
     EXPECT_EQ(halfedges_on_edge(cube, topology, h), halfedges_on_edge(cube, topology, o));
   }
   for (int v = 0; v < cube.vertex_count(); ++v) {
-    EXPECT_GE(topology.faces_of_vertex_end(v) - topology.faces_of_vertex_begin(v), 3) << v;
+    EXPECT_GE(faces_of_vertex(topology, v).size(), 3u) << v;
   }
   const int h = find_halfedge(cube, topology, 0, 2);  // face {0, 2, 1}
   ASSERT_GE(h, 0);
@@ -50,13 +50,52 @@ TEST(Topology, CountsComponents) {
     two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
   }
   two = make_mesh(two.positions, two.triangles);
-  const MeshTopology topology = build_topology(two);
-  EXPECT_EQ(topology.component_count, 2);
+  const FaceComponents components = face_components(two, build_topology(two));
+  EXPECT_EQ(components.count, 2);
   for (int f = 0; f < two.face_count(); ++f) {
-    EXPECT_EQ(topology.face_component[f],
-              f < 8 ? topology.face_component[0] : topology.face_component[8]);
+    EXPECT_EQ(components.of_face[f], f < 8 ? 0 : 1);
   }
-  EXPECT_NE(topology.face_component[0], topology.face_component[8]);
+}
+
+// The faces around each vertex, walked round it or listed, are those that hold it, each once: on
+// a closed surface, an open grid, and at a pinch (two fans), a non-manifold edge and a misoriented
+// one. A walk serves every vertex of one fan through two-face edges; the others are listed.
+TEST(Topology, FacesOfAVertexAreFoundByWalkingRoundIt) {
+  // Edge (0, 1) has three faces, edge (1, 2) two misoriented ones, vertex 5 two fans.
+  const Mesh pinched =
+      make_mesh({{0, 0, 0},
+                 {1, 0, 0},
+                 {0, 1, 0},
+                 {-1, 0, 0},
+                 {0, -1, 0},
+                 {0.5, 0, 1},
+                 {0.5, 0, -1},
+                 {1, 1, 0},
+                 {0.5, 1, 2},
+                 {1, 1, 2}},
+                {{0, 1, 2}, {0, 3, 4}, {0, 1, 5}, {1, 0, 6}, {3, 0, 2}, {1, 2, 7}, {5, 8, 9}});
+  for (const Mesh& mesh : {make_cube(), make_grid(4), pinched}) {
+    const MeshTopology topology = build_topology(mesh);
+    for (int v = 0; v < mesh.vertex_count(); ++v) {
+      std::vector<int> holding;
+      for (int f = 0; f < mesh.face_count(); ++f) {
+        const Triangle& t = mesh.triangles[f];
+        if (std::find(t.begin(), t.end(), v) != t.end()) holding.push_back(f);
+      }
+      std::vector<int> visited;
+      for_each_face_of_vertex(topology, v, [&](int face) { visited.push_back(face); });
+      std::sort(visited.begin(), visited.end());
+      EXPECT_EQ(visited, holding) << v;
+      EXPECT_EQ(faces_of_vertex(topology, v), holding) << v;
+    }
+  }
+  EXPECT_TRUE(build_topology(make_grid(4)).listed_vertices.empty());
+  const MeshTopology topology = build_topology(pinched);
+  EXPECT_TRUE(
+      std::binary_search(topology.listed_vertices.begin(), topology.listed_vertices.end(), 0));
+  EXPECT_EQ(topology.vertex_halfedge[0], kListedFaces);
+  EXPECT_EQ(topology.vertex_halfedge[5], kListedFaces);
+  EXPECT_EQ(topology.nonmanifold_vertices, (std::vector<int>{0, 1, 5}));
 }
 
 TEST(Topology, MisorientedEdgeIsCounted) {
@@ -81,7 +120,7 @@ TEST(Topology, EdgesAreFoundWithoutAList) {
   EXPECT_EQ(topology.edge_count, static_cast<int>(edges.edges.size()));
   EXPECT_EQ(topology.nonmanifold_edge_count, 1);
   EXPECT_EQ(topology.misoriented_edge_count, 1);
-  EXPECT_EQ(topology.component_count, 1);
+  EXPECT_EQ(face_components(mesh, topology).count, 1);
   int firsts = 0;
   for (int h = 0; h < 3 * mesh.face_count(); ++h) {
     const Edge& edge = edges.edges[edges.halfedge_edge[h]];

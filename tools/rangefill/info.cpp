@@ -27,7 +27,7 @@ int run_info(const InfoOptions& options) {
   const auto [lo, hi] = bounding_box(mesh);
   int unreferenced = 0;
   for (int v = 0; v < mesh.vertex_count(); ++v) {
-    if (topology.faces_of_vertex_begin(v) == topology.faces_of_vertex_end(v)) ++unreferenced;
+    if (topology.vertex_halfedge[v] == kNoFaces) ++unreferenced;
   }
   std::vector<int> all_faces(mesh.face_count());
   std::iota(all_faces.begin(), all_faces.end(), 0);
@@ -44,7 +44,7 @@ int run_info(const InfoOptions& options) {
     print_json({{"file", options.mesh},
                 {"vertices", mesh.vertex_count()},
                 {"faces", mesh.face_count()},
-                {"components", topology.component_count},
+                {"components", holes.component_areas.size()},
                 {"boundary_loops", loop_sizes},
                 {"open_boundary_edges", holes.open_boundary_edges},
                 {"nonmanifold_edges", defects.nonmanifold_edges},
@@ -70,7 +70,7 @@ int run_info(const InfoOptions& options) {
             << "attributes           " << (mesh.has_colors() ? "colour " : "")
             << (mesh.has_normals() ? "normal " : "")
             << (mesh.has_colors() || mesh.has_normals() ? "" : "none") << "\n"
-            << "components           " << topology.component_count << "\n"
+            << "components           " << holes.component_areas.size() << "\n"
             << "boundary loops       " << holes.loops.size();
   if (!loop_sizes.empty()) {
     std::cout << " (edges:";

@@ -1,9 +1,12 @@
-// Adjacency of a triangle mesh: half-edges, their opposites and vertex-to-face incidence; the list
-// of undirected edges on request. Built in O(V + E): each edge grouped at its lower vertex from
-// that vertex's faces, ranges of vertices in parallel for a large mesh (the same result at any
-// thread count); no hashing. The topology a repair holds is 4 ints a face and 1 a vertex.
+// Adjacency of a triangle mesh: half-edges, their opposites and the faces around each vertex; the
+// list of undirected edges on request. Built in O(V + E): each edge grouped at its lower vertex
+// from that vertex's faces, ranges of vertices in parallel for a large mesh (the same result at
+// any thread count); no hashing. The topology a repair holds is 4 ints a face and 1 a vertex: the
+// faces around a vertex are found by walking round it through the opposites, listed only where
+// no walk reaches them all.
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -30,26 +33,76 @@ inline constexpr int kNonManifold = -2;
 
 struct MeshTopology {
   std::vector<int> opposite;  // per half-edge: the opposite half-edge, kBoundary or kNonManifold
-  std::vector<int> vertex_face_offsets;   // CSR, size V + 1
-  std::vector<int> vertex_faces;          // faces around each vertex, ascending
+  // Per vertex: a half-edge leaving it, where the walk round its faces starts; kNoFaces, or
+  // kListedFaces for a vertex whose faces no walk reaches (several fans, a non-manifold edge).
+  std::vector<int> vertex_halfedge;
+  std::vector<int> listed_vertices;       // the kListedFaces vertices, ascending
+  std::vector<int> listed_face_offsets;   // CSR over listed_vertices, size + 1
+  std::vector<int> listed_faces;          // their faces, ascending
   std::vector<int> nonmanifold_vertices;  // vertices whose faces form more than one fan
   int edge_count = 0;                     // undirected edges
   int nonmanifold_edge_count = 0;         // edges with more than two faces
   int misoriented_edge_count = 0;         // edges whose two faces disagree in orientation
   int duplicated_face_count = 0;          // faces on the same three vertices as an earlier one
-  int component_count = 0;                // connected components of faces (through edges)
-  std::vector<int> face_component;        // per face, in [0, component_count)
 
-  int halfedge_source(const Mesh& mesh, int h) const { return mesh.triangles[h / 3][h % 3]; }
-  int halfedge_target(const Mesh& mesh, int h) const {
+  static int halfedge_source(const Mesh& mesh, int h) { return mesh.triangles[h / 3][h % 3]; }
+  static int halfedge_target(const Mesh& mesh, int h) {
     return mesh.triangles[h / 3][(h % 3 + 1) % 3];
   }
-  int faces_of_vertex_begin(int v) const { return vertex_face_offsets[v]; }
-  int faces_of_vertex_end(int v) const { return vertex_face_offsets[v + 1]; }
 };
+
+/// Values of MeshTopology::vertex_halfedge other than a half-edge.
+inline constexpr int kNoFaces = -1;
+inline constexpr int kListedFaces = -2;
 
 /// Builds the adjacency. Precondition: validate_mesh(mesh) passes.
 MeshTopology build_topology(const Mesh& mesh);
+
+/// Calls visit(face) once for each face of the fan of half-edge `start` (which leaves a vertex v)
+/// reached through two-face edges at v: round v against the orientation, and when the fan is open,
+/// from `start` with the orientation. O(faces visited).
+template <typename Visit>
+void for_each_face_of_fan(const MeshTopology& topology, int start, Visit visit) {
+  visit(halfedge_face(start));
+  // Against the orientation: across the edge entering v, to the half-edge leaving v beyond it.
+  int h = topology.opposite[prev_halfedge(start)];
+  for (; h >= 0 && h != start; h = topology.opposite[prev_halfedge(h)]) visit(halfedge_face(h));
+  if (h == start) return;  // closed round
+  // With the orientation: across the edge leaving v, to the half-edge entering v beyond it.
+  for (h = topology.opposite[start]; h >= 0; h = topology.opposite[next_halfedge(h)]) {
+    visit(halfedge_face(h));
+  }
+}
+
+/// Calls visit(face) once for each face around vertex v: round its fan from
+/// topology.vertex_halfedge[v], else in ascending order from its list. O(valence), O(log) more
+/// for a listed vertex.
+template <typename Visit>
+void for_each_face_of_vertex(const MeshTopology& topology, int v, Visit visit) {
+  const int start = topology.vertex_halfedge[v];
+  if (start >= 0) {
+    for_each_face_of_fan(topology, start, visit);
+  } else if (start == kListedFaces) {
+    const auto& listed = topology.listed_vertices;
+    const auto i = std::lower_bound(listed.begin(), listed.end(), v) - listed.begin();
+    for (int k = topology.listed_face_offsets[i]; k < topology.listed_face_offsets[i + 1]; ++k) {
+      visit(topology.listed_faces[k]);
+    }
+  }
+}
+
+/// The faces around vertex v, ascending.
+std::vector<int> faces_of_vertex(const MeshTopology& topology, int v);
+
+/// Connected components of faces, joined through their edges (misoriented and non-manifold ones
+/// too).
+struct FaceComponents {
+  int count = 0;
+  std::vector<int> of_face;  // per face, in [0, count)
+};
+
+/// The components of `mesh`'s faces. Precondition: `topology` was built from `mesh`.
+FaceComponents face_components(const Mesh& mesh, const MeshTopology& topology);
 
 /// One undirected edge and the half-edges that lie on it.
 struct Edge {

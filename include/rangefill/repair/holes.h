@@ -40,7 +40,7 @@ struct HoleSet {
   std::vector<int> pinched_vertices;
   // Boundary edges that do not close into a loop (only next to non-manifold or misoriented edges).
   int open_boundary_edges = 0;
-  std::vector<double> component_areas;  // the area of each component's faces (MeshTopology)
+  std::vector<double> component_areas;  // the area of each component's faces (face_components)
 };
 
 /// Traces every boundary loop in O(boundary edges) once the topology exists. Where loops touch at a
