@@ -3,6 +3,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -18,10 +19,38 @@ ReadResult parse_obj(std::string_view bytes, const std::string& name);
 ReadResult parse_off(std::string_view bytes, const std::string& name);
 ReadResult parse_stl(std::string_view bytes, const std::string& name);
 
-std::string serialize_ply(const Mesh& mesh, const WriteOptions& options);
-std::string serialize_obj(const Mesh& mesh);
-std::string serialize_off(const Mesh& mesh);
-std::string serialize_stl(const Mesh& mesh, const WriteOptions& options);
+/// Where a serializer appends a file's bytes (bytes()): handed to `drain` and emptied each time a
+/// record ends past a megabyte, and at flush(); without a drain they stay, the whole file.
+class ByteSink {
+ public:
+  using Drain = std::function<void(std::string_view)>;
+  explicit ByteSink(Drain drain = nullptr) : drain_(std::move(drain)) {}
+
+  std::string& bytes() { return bytes_; }
+  /// Room for `count` more bytes when they all stay (a binary body's exact size).
+  void expect(size_t count) {
+    if (!drain_) bytes_.reserve(bytes_.size() + count);
+  }
+  void end_record() {
+    if (bytes_.size() >= kDrainBytes) flush();
+  }
+  void flush() {
+    if (!drain_) return;
+    drain_(bytes_);
+    bytes_.clear();
+  }
+  std::string take() { return std::move(bytes_); }
+
+ private:
+  static constexpr size_t kDrainBytes = size_t{1} << 20;
+  Drain drain_;
+  std::string bytes_;
+};
+
+void serialize_ply(const Mesh& mesh, const WriteOptions& options, ByteSink& sink);
+void serialize_obj(const Mesh& mesh, ByteSink& sink);
+void serialize_off(const Mesh& mesh, ByteSink& sink);
+void serialize_stl(const Mesh& mesh, const WriteOptions& options, ByteSink& sink);
 
 /// Throws InvalidInput("<name>: <what>").
 [[noreturn]] void fail(const std::string& name, const std::string& what);

@@ -263,8 +263,9 @@ ReadResult parse_obj(std::string_view bytes, const std::string& name) {
   return result;
 }
 
-std::string serialize_obj(const Mesh& mesh) {
-  std::string out = "# written by rangefill\n";
+void serialize_obj(const Mesh& mesh, ByteSink& sink) {
+  std::string& out = sink.bytes();
+  out += "# written by rangefill\n";
   for (int v = 0; v < mesh.vertex_count(); ++v) {
     out += "v ";
     append_numbers(out, mesh.positions[v], mesh.storage.position);
@@ -273,11 +274,13 @@ std::string serialize_obj(const Mesh& mesh) {
       append_numbers(out, mesh.colors[v].cast<double>(), ScalarType::float32);
     }
     out += '\n';
+    sink.end_record();
   }
   for (const Vec3& normal : mesh.normals) {
     out += "vn ";
     append_numbers(out, normal, mesh.storage.normal);
     out += '\n';
+    sink.end_record();
   }
   for (const Triangle& triangle : mesh.triangles) {
     out += 'f';
@@ -287,8 +290,8 @@ std::string serialize_obj(const Mesh& mesh) {
       if (mesh.has_normals()) out += "//" + index;
     }
     out += '\n';
+    sink.end_record();
   }
-  return out;
 }
 
 }  // namespace rangefill::detail

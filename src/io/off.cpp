@@ -1,7 +1,7 @@
 // OFF (Geomview's Object File Format), ASCII: OFF, COFF, NOFF and CNOFF/NCOFF with '#' comments,
-// one vertex or face per line. Our own parser: CGAL's reader (CGAL is a dependency of the core) reads
-// into its own mesh types and reports failure as a bool, without the line at fault, and the colour
-// rule below needs the numbers as written.
+// one vertex or face per line. Our own parser: CGAL's reader (CGAL is a dependency of the core)
+// reads into its own mesh types and reports failure as a bool, without the line at fault, and the
+// colour rule below needs the numbers as written.
 //
 // Colour rule. OFF does not say whether colour components are 8-bit integers (0-255) or floats in
 // [0, 1], so it is decided per file, separately for vertex and for face colours: they are 8-bit if
@@ -358,7 +358,7 @@ ReadResult parse_off(std::string_view bytes, const std::string& name) {
   return OffParser(bytes, name).parse();
 }
 
-std::string serialize_off(const Mesh& mesh) {
+void serialize_off(const Mesh& mesh, ByteSink& sink) {
   const ExtraProperty* vertex_alpha =
       mesh.has_colors() ? find_colour_property(mesh.vertex_properties, "alpha") : nullptr;
   const bool eight_bit_vertices = mesh.storage.color == ScalarType::uint8 &&
@@ -373,7 +373,7 @@ std::string serialize_off(const Mesh& mesh) {
         return !property || property->type == ScalarType::uint8;
       });
 
-  std::string out;
+  std::string& out = sink.bytes();
   if (mesh.has_colors()) out += 'C';
   if (mesh.has_normals()) out += 'N';
   out += "OFF\n" + std::to_string(mesh.vertex_count()) + ' ' + std::to_string(mesh.face_count()) +
@@ -393,6 +393,7 @@ std::string serialize_off(const Mesh& mesh) {
       }
     }
     out += '\n';
+    sink.end_record();
   }
   for (int f = 0; f < mesh.face_count(); ++f) {
     const Triangle& t = mesh.triangles[f];
@@ -406,8 +407,8 @@ std::string serialize_off(const Mesh& mesh) {
       }
     }
     out += '\n';
+    sink.end_record();
   }
-  return out;
 }
 
 }  // namespace rangefill::detail

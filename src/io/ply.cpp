@@ -602,7 +602,8 @@ namespace {
 
 class BodyWriter {
  public:
-  BodyWriter(std::string& out, PlyEncoding encoding) : out_(out), encoding_(encoding) {}
+  BodyWriter(ByteSink& sink, PlyEncoding encoding)
+      : sink_(sink), out_(sink.bytes()), encoding_(encoding) {}
 
   void scalar(double value, ScalarType type) {
     if (encoding_ == PlyEncoding::ascii) {
@@ -642,6 +643,7 @@ class BodyWriter {
   void end_record() {
     if (encoding_ == PlyEncoding::ascii) out_ += '\n';
     at_line_start_ = true;
+    sink_.end_record();
   }
 
  private:
@@ -653,7 +655,8 @@ class BodyWriter {
     out_.append(raw, sizeof(T));
   }
 
-  std::string& out_;
+  ByteSink& sink_;
+  std::string& out_;  // the sink's
   PlyEncoding encoding_;
   bool at_line_start_ = true;
 };
@@ -669,7 +672,7 @@ double color_channel(float value, ScalarType type) {
 
 }  // namespace
 
-std::string serialize_ply(const Mesh& mesh, const WriteOptions& options) {
+void serialize_ply(const Mesh& mesh, const WriteOptions& options, ByteSink& sink) {
   const PlyEncoding encoding = options.encoding == Encoding::ascii ? PlyEncoding::ascii
                                : options.big_endian                ? PlyEncoding::binary_big_endian
                                                     : PlyEncoding::binary_little_endian;
@@ -678,7 +681,8 @@ std::string serialize_ply(const Mesh& mesh, const WriteOptions& options) {
   const ScalarType color_type =
       is_integer(mesh.storage.color) ? ScalarType::uint8 : mesh.storage.color;
 
-  std::string out = "ply\nformat ";
+  std::string& out = sink.bytes();
+  out += "ply\nformat ";
   out += encoding == PlyEncoding::ascii               ? "ascii"
          : encoding == PlyEncoding::binary_big_endian ? "binary_big_endian"
                                                       : "binary_little_endian";
@@ -710,10 +714,10 @@ std::string serialize_ply(const Mesh& mesh, const WriteOptions& options) {
   if (provenance) property(ScalarType::int32, kProvenanceProperty);
   out += "end_header\n";
   if (encoding != PlyEncoding::ascii) {  // the body's exact size: the string grows once
-    out.reserve(out.size() + mesh.vertex_count() * vertex_bytes + mesh.face_count() * record_bytes);
+    sink.expect(mesh.vertex_count() * vertex_bytes + mesh.face_count() * record_bytes);
   }
 
-  BodyWriter body(out, encoding);
+  BodyWriter body(sink, encoding);
   for (int v = 0; v < mesh.vertex_count(); ++v) {
     for (int axis = 0; axis < 3; ++axis)
       body.scalar(mesh.positions[v][axis], mesh.storage.position);
@@ -737,7 +741,6 @@ std::string serialize_ply(const Mesh& mesh, const WriteOptions& options) {
     if (provenance) body.scalar(mesh.face_hole[f], ScalarType::int32);
     body.end_record();
   }
-  return out;
 }
 
 }  // namespace rangefill::detail

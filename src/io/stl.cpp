@@ -246,14 +246,14 @@ ReadResult parse_stl(std::string_view bytes, const std::string& name) {
   return result;
 }
 
-std::string serialize_stl(const Mesh& mesh, const WriteOptions& options) {
+void serialize_stl(const Mesh& mesh, const WriteOptions& options, ByteSink& sink) {
   std::vector<Vec3> normals(mesh.face_count(), Vec3::Zero());
   for (int f = 0; f < mesh.face_count(); ++f) {
     const Vec3 cross = triangle_cross(mesh, f);
     const double length = cross.norm();
     if (length > 0 && std::isfinite(length)) normals[f] = cross / length;
   }
-  std::string out;
+  std::string& out = sink.bytes();
   if (options.encoding == Encoding::ascii) {
     out += "solid rangefill\n";
     for (int f = 0; f < mesh.face_count(); ++f) {
@@ -266,13 +266,14 @@ std::string serialize_stl(const Mesh& mesh, const WriteOptions& options) {
         out += '\n';
       }
       out += "  endloop\nendfacet\n";
+      sink.end_record();
     }
     out += "endsolid rangefill\n";
-    return out;
+    return;
   }
   out = "rangefill";  // must not start with "solid", which readers take for ASCII
   out.resize(kHeaderSize, ' ');
-  out.reserve(kPrefixSize + kFacetSize * mesh.triangles.size());
+  sink.expect(kPrefixSize - kHeaderSize + kFacetSize * mesh.triangles.size());
   append_uint32_le(out, static_cast<std::uint32_t>(mesh.face_count()));
   for (int f = 0; f < mesh.face_count(); ++f) {
     for (int axis = 0; axis < 3; ++axis) append_float_le(out, static_cast<float>(normals[f][axis]));
@@ -282,8 +283,8 @@ std::string serialize_stl(const Mesh& mesh, const WriteOptions& options) {
       }
     }
     out.append(2, '\0');  // attribute byte count
+    sink.end_record();
   }
-  return out;
 }
 
 }  // namespace rangefill::detail

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -41,6 +42,13 @@ std::string read_file(const std::filesystem::path& path);
 /// leaves nothing behind. Throws IoError.
 void write_file_atomically(const std::string& bytes, const std::filesystem::path& path);
 
+/// What gives write_file_atomically a file's bytes in pieces: it calls `write` on each in order.
+using ByteProducer = std::function<void(const std::function<void(std::string_view)>& write)>;
+
+/// As above, the bytes from `produce`, so that a large file is never whole in memory. `produce`
+/// runs again if the unnamed file cannot be given a name (no /proc).
+void write_file_atomically(const std::filesystem::path& path, const ByteProducer& produce);
+
 enum class Encoding { binary, ascii };
 
 struct WriteOptions {
@@ -50,8 +58,9 @@ struct WriteOptions {
 };
 
 /// Writes atomically: to a temporary file beside `path`, then renamed over it, so that a failure
-/// leaves no partial file. Positions, normals and colours are written in mesh.storage types
-/// (ASCII with enough digits to read back the same value). Throws IoError.
+/// leaves no partial file; the bytes go out a megabyte at a time as they are made. Positions,
+/// normals and colours are written in mesh.storage types (ASCII with enough digits to read back
+/// the same value). Throws IoError.
 void write_mesh(const Mesh& mesh, const std::filesystem::path& path,
                 const WriteOptions& options = {});
 
