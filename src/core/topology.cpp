@@ -18,44 +18,35 @@ int find_root(std::vector<int>& parent, int x) {
   return x;
 }
 
-// Vertex-to-face incidence in CSR form, faces ascending: what the build reads, and lists for the
-// vertices no walk serves.
-struct VertexFaces {
-  std::vector<int> offsets;  // size V + 1
-  std::vector<int> faces;
-  const int* begin(int v) const { return faces.data() + offsets[v]; }
-  const int* end(int v) const { return faces.data() + offsets[v + 1]; }
-};
-
-VertexFaces vertex_faces(const Mesh& mesh) {
-  VertexFaces incidence;
-  incidence.offsets.assign(static_cast<size_t>(mesh.vertex_count()) + 1, 0);
-  for (const Triangle& t : mesh.triangles) {
-    for (int v : t) ++incidence.offsets[v + 1];
-  }
-  std::partial_sum(incidence.offsets.begin(), incidence.offsets.end(), incidence.offsets.begin());
-  incidence.faces.resize(incidence.offsets.back());
-  std::vector<int> cursor(incidence.offsets.begin(), incidence.offsets.end() - 1);
-  for (int f = 0; f < mesh.face_count(); ++f) {
-    for (int v : mesh.triangles[f]) incidence.faces[cursor[v]++] = f;
-  }
-  return incidence;
-}
-
 constexpr auto halfedge_source = &MeshTopology::halfedge_source;
 constexpr auto halfedge_target = &MeshTopology::halfedge_target;
 
-// The half-edges of v's faces on the edges whose lower end is v, as (higher end, half-edge),
-// sorted: each run of one higher end is an edge, its half-edges ascending.
-void upward_halfedges(const Mesh& mesh, const VertexFaces& incidence, int v,
-                      std::vector<std::pair<int, int>>& upward) {
+// The half-edges of each edge grouped at the edge's lower end: chained from head[v] through
+// next[h], -1 ending a chain. A vertex's chain holds every half-edge of its upward edges.
+struct UpwardChains {
+  std::vector<int> head;  // per vertex
+  std::vector<int> next;  // per half-edge
+};
+
+UpwardChains upward_chains(const Mesh& mesh) {
+  UpwardChains chains{std::vector<int>(mesh.vertex_count(), -1),
+                      std::vector<int>(3 * static_cast<size_t>(mesh.face_count()))};
+  for (int h = static_cast<int>(chains.next.size()) - 1; h >= 0; --h) {
+    const int lower = std::min(halfedge_source(mesh, h), halfedge_target(mesh, h));
+    chains.next[h] = chains.head[lower];
+    chains.head[lower] = h;
+  }
+  return chains;
+}
+
+// The half-edges of the edges whose lower end is v (its chain from head[v] through next), as
+// (higher end, half-edge), sorted: each run of one higher end is an edge, its half-edges
+// ascending.
+void upward_halfedges(const Mesh& mesh, const std::vector<int>& head, const std::vector<int>& next,
+                      int v, std::vector<std::pair<int, int>>& upward) {
   upward.clear();
-  for (const int* face = incidence.begin(v); face != incidence.end(v); ++face) {
-    for (int h = 3 * *face; h < 3 * *face + 3; ++h) {
-      const int source = halfedge_source(mesh, h);
-      const int target = halfedge_target(mesh, h);
-      if (std::min(source, target) == v) upward.emplace_back(std::max(source, target), h);
-    }
+  for (int h = head[v]; h >= 0; h = next[h]) {
+    upward.emplace_back(std::max(halfedge_source(mesh, h), halfedge_target(mesh, h)), h);
   }
   std::sort(upward.begin(), upward.end());
 }
@@ -104,12 +95,13 @@ struct EdgeCounts {
 
 // Pairs the opposite half-edges of the edges whose lower end is in [first_vertex, last_vertex)
 // and counts those edges.
-EdgeCounts pair_opposites_of_range(const Mesh& mesh, const VertexFaces& incidence,
+EdgeCounts pair_opposites_of_range(const Mesh& mesh, const std::vector<int>& head,
                                    MeshTopology& topology, int first_vertex, int last_vertex) {
   EdgeCounts counts;
   std::vector<std::pair<int, int>> upward;
   for (int v = first_vertex; v < last_vertex; ++v) {
-    upward_halfedges(mesh, incidence, v, upward);
+    upward_halfedges(mesh, head, topology.opposite, v, upward);
+    for (const auto& [higher, h] : upward) topology.opposite[h] = kBoundary;
     for_each_edge_run(upward, [&](size_t begin, size_t end) {
       ++counts.edges;
       counts.duplicated_faces += duplicated_faces(mesh, upward, begin, end);
@@ -132,13 +124,15 @@ EdgeCounts pair_opposites_of_range(const Mesh& mesh, const VertexFaces& incidenc
 }
 
 // Pairs opposite half-edges and counts the edges: ranges of vertices in parallel, each writing the
-// half-edges of its own edges (the same at any thread count).
-void pair_opposites(const Mesh& mesh, const VertexFaces& incidence, MeshTopology& topology) {
-  topology.opposite.assign(3 * static_cast<size_t>(mesh.face_count()), kBoundary);
+// half-edges of its own edges (the same at any thread count). The opposites overwrite the chains'
+// links (no second array of the half-edges' size), each vertex's once its chain is read.
+void pair_opposites(const Mesh& mesh, MeshTopology& topology) {
+  UpwardChains chains = upward_chains(mesh);
+  topology.opposite = std::move(chains.next);
   const int vertices = mesh.vertex_count();
   std::vector<EdgeCounts> ranges(kMeshRanges);
   parallel_for(kMeshRanges, mesh_pass_threads(mesh.face_count()), [&](int r) {
-    ranges[r] = pair_opposites_of_range(mesh, incidence, topology, range_begin(vertices, r),
+    ranges[r] = pair_opposites_of_range(mesh, chains.head, topology, range_begin(vertices, r),
                                         range_begin(vertices, r + 1));
   });
   for (const EdgeCounts& range : ranges) {
@@ -201,44 +195,53 @@ int count_fans(const Mesh& mesh, const MeshTopology& topology, int v, const int*
   return fans;
 }
 
-// Where the walk round each vertex starts, and the vertices no walk serves (their faces listed);
-// those of several fans (a pinch, or faces meeting at a non-manifold edge) are non-manifold.
-// Ranges of vertices in parallel, joined in order.
-void find_vertex_walks(const Mesh& mesh, const VertexFaces& incidence, MeshTopology& topology) {
+// Where the walk round each vertex starts (its half-edge leaving it in its lowest face), and the
+// vertices no walk serves, their faces listed; those of several fans (a pinch, or faces meeting
+// at a non-manifold edge) are non-manifold. The walks in ranges of vertices in parallel.
+void find_vertex_walks(const Mesh& mesh, MeshTopology& topology) {
   const int vertices = mesh.vertex_count();
   topology.vertex_halfedge.assign(vertices, kNoFaces);
-  struct Irregular {
-    std::vector<int> listed, nonmanifold;
-  };
-  std::vector<Irregular> found(kMeshRanges);
+  std::vector<int> degree(vertices, 0);
+  for (int h = 0; h < static_cast<int>(topology.opposite.size()); ++h) {
+    const int v = halfedge_source(mesh, h);
+    if (degree[v]++ == 0) topology.vertex_halfedge[v] = h;
+  }
+  std::vector<std::vector<int>> unwalked(kMeshRanges);
   parallel_for(kMeshRanges, mesh_pass_threads(mesh.face_count()), [&](int r) {
-    std::vector<int> parent;
     for (int v = range_begin(vertices, r); v < range_begin(vertices, r + 1); ++v) {
-      const int* first = incidence.begin(v);
-      const int* last = incidence.end(v);
-      if (first == last) continue;
-      const int start = halfedge_leaving(mesh, *first, v);
+      if (degree[v] == 0) continue;
       int reached = 0;
-      for_each_face_of_fan(topology, start, [&](int) { ++reached; });
-      if (reached == last - first) {  // distinct faces: a walk visits each half-edge once
-        topology.vertex_halfedge[v] = start;
-        continue;
-      }
-      topology.vertex_halfedge[v] = kListedFaces;
-      found[r].listed.push_back(v);
-      if (count_fans(mesh, topology, v, first, last, parent) > 1) found[r].nonmanifold.push_back(v);
+      for_each_face_of_fan(topology, topology.vertex_halfedge[v], [&](int) { ++reached; });
+      // Distinct faces: a walk visits each half-edge leaving v once, each face has one.
+      if (reached != degree[v]) unwalked[r].push_back(v);
     }
   });
   topology.listed_face_offsets.push_back(0);
-  for (const Irregular& range : found) {
-    for (int v : range.listed) {
+  for (const std::vector<int>& range : unwalked) {
+    for (int v : range) {
+      topology.vertex_halfedge[v] = kListedFaces;
       topology.listed_vertices.push_back(v);
-      topology.listed_faces.insert(topology.listed_faces.end(), incidence.begin(v),
-                                   incidence.end(v));
-      topology.listed_face_offsets.push_back(static_cast<int>(topology.listed_faces.size()));
+      topology.listed_face_offsets.push_back(topology.listed_face_offsets.back() + degree[v]);
     }
-    topology.nonmanifold_vertices.insert(topology.nonmanifold_vertices.end(),
-                                         range.nonmanifold.begin(), range.nonmanifold.end());
+  }
+  topology.listed_faces.resize(topology.listed_face_offsets.back());
+  std::vector<int> cursor(topology.listed_face_offsets.begin(),
+                          topology.listed_face_offsets.end() - 1);
+  const auto& listed = topology.listed_vertices;
+  for (int f = 0; f < mesh.face_count(); ++f) {
+    for (int v : mesh.triangles[f]) {
+      if (topology.vertex_halfedge[v] != kListedFaces) continue;
+      topology.listed_faces[cursor[std::lower_bound(listed.begin(), listed.end(), v) -
+                                   listed.begin()]++] = f;
+    }
+  }
+  std::vector<int> parent;
+  for (size_t i = 0; i < listed.size(); ++i) {
+    const int* first = topology.listed_faces.data() + topology.listed_face_offsets[i];
+    const int* last = topology.listed_faces.data() + topology.listed_face_offsets[i + 1];
+    if (count_fans(mesh, topology, listed[i], first, last, parent) > 1) {
+      topology.nonmanifold_vertices.push_back(listed[i]);
+    }
   }
 }
 
@@ -246,9 +249,8 @@ void find_vertex_walks(const Mesh& mesh, const VertexFaces& incidence, MeshTopol
 
 MeshTopology build_topology(const Mesh& mesh) {
   MeshTopology topology;
-  const VertexFaces incidence = vertex_faces(mesh);
-  pair_opposites(mesh, incidence, topology);
-  find_vertex_walks(mesh, incidence, topology);
+  pair_opposites(mesh, topology);
+  find_vertex_walks(mesh, topology);
   return topology;
 }
 
@@ -260,11 +262,15 @@ std::vector<int> faces_of_vertex(const MeshTopology& topology, int v) {
 }
 
 FaceComponents face_components(const Mesh& mesh, const MeshTopology& topology) {
+  // Union-find whose roots are the components' lowest faces (parent[f] <= f), so that one array
+  // serves: in face order, a face's parent already holds its component.
   std::vector<int> parent(mesh.face_count());
   std::iota(parent.begin(), parent.end(), 0);
   for (int h = 0; h < static_cast<int>(topology.opposite.size()); ++h) {
     const auto join = [&](int other) {
-      parent[find_root(parent, halfedge_face(other))] = find_root(parent, halfedge_face(h));
+      const int a = find_root(parent, halfedge_face(other));
+      const int b = find_root(parent, halfedge_face(h));
+      parent[std::max(a, b)] = std::min(a, b);
     };
     const int opposite = topology.opposite[h];
     if (opposite > h) join(opposite);
@@ -273,13 +279,10 @@ FaceComponents face_components(const Mesh& mesh, const MeshTopology& topology) {
     }
   }
   FaceComponents components;  // numbered in the order of their first faces
-  components.of_face.resize(mesh.face_count());
-  std::vector<int> root_component(mesh.face_count(), -1);
   for (int f = 0; f < mesh.face_count(); ++f) {
-    const int root = find_root(parent, f);
-    if (root_component[root] < 0) root_component[root] = components.count++;
-    components.of_face[f] = root_component[root];
+    parent[f] = parent[f] == f ? components.count++ : parent[parent[f]];
   }
+  components.of_face = std::move(parent);
   return components;
 }
 
@@ -288,10 +291,10 @@ MeshEdges build_edges(const Mesh& mesh, const MeshTopology& topology) {
   edges.edges.reserve(topology.edge_count);
   edges.edge_halfedges.reserve(topology.opposite.size());
   edges.halfedge_edge.assign(topology.opposite.size(), -1);
-  const VertexFaces incidence = vertex_faces(mesh);
+  const UpwardChains chains = upward_chains(mesh);
   std::vector<std::pair<int, int>> upward;
   for (int v = 0; v < mesh.vertex_count(); ++v) {
-    upward_halfedges(mesh, incidence, v, upward);
+    upward_halfedges(mesh, chains.head, chains.next, v, upward);
     for_each_edge_run(upward, [&](size_t begin, size_t end) {
       const int edge = static_cast<int>(edges.edges.size());
       edges.edges.push_back({v, upward[begin].first, static_cast<int>(edges.edge_halfedges.size()),

@@ -20,29 +20,21 @@ class BoundaryWalk {
       : mesh_(mesh),
         topology_(topology),
         components_(components),
-        visited_(topology.opposite.size(), 0),
-        boundary_degree_(mesh.vertex_count(), 0),
-        out_offsets_(mesh.vertex_count() + 1, 0) {
-    const int halfedge_count = static_cast<int>(topology.opposite.size());
-    for (int h = 0; h < halfedge_count; ++h) {
-      if (topology.opposite[h] == kBoundary) ++boundary_degree_[topology.halfedge_source(mesh, h)];
-    }
-    // Boundary half-edges leaving each vertex (CSR).
-    for (int v = 0; v < mesh.vertex_count(); ++v)
-      out_offsets_[v + 1] = out_offsets_[v] + boundary_degree_[v];
-    out_halfedges_.resize(out_offsets_.back());
-    std::vector<int> cursor(out_offsets_.begin(), out_offsets_.end() - 1);
-    for (int h = 0; h < halfedge_count; ++h) {
+        visited_(topology.opposite.size(), false) {
+    for (int h = 0; h < static_cast<int>(topology.opposite.size()); ++h) {
       if (topology.opposite[h] == kBoundary)
-        out_halfedges_[cursor[topology.halfedge_source(mesh, h)]++] = h;
+        leaving_.emplace_back(topology.halfedge_source(mesh, h), h);
     }
+    std::sort(leaving_.begin(), leaving_.end());
   }
 
   // Vertices on more than two boundary edges, ascending.
   std::vector<int> pinched_vertices() const {
     std::vector<int> pinched;
-    for (int v = 0; v < mesh_.vertex_count(); ++v) {
-      if (boundary_degree_[v] > 1) pinched.push_back(v);
+    for (size_t i = 1; i < leaving_.size(); ++i) {
+      const int v = leaving_[i].first;
+      if (leaving_[i - 1].first == v && (pinched.empty() || pinched.back() != v))
+        pinched.push_back(v);
     }
     return pinched;
   }
@@ -77,16 +69,15 @@ class BoundaryWalk {
       return (!visited_[candidate] || candidate == start) &&
              components_.of_face[halfedge_face(candidate)] == component;
     };
-    if (boundary_degree_[b] == 1) {
-      const int only = out_halfedges_[out_offsets_[b]];
-      return available(only) ? only : -1;
-    }
+    const auto first = std::lower_bound(leaving_.begin(), leaving_.end(), std::pair(b, 0));
+    const auto last = std::lower_bound(first, leaving_.end(), std::pair(b + 1, 0));
+    if (last - first == 1) return available(first->second) ? first->second : -1;
     const Vec3 reference = mesh_.positions[a] - mesh_.positions[b];
     const Vec3 normal = vertex_normal(mesh_, topology_, b);
     int best = -1;
     double best_angle = 0;
-    for (int i = out_offsets_[b]; i < out_offsets_[b + 1]; ++i) {
-      const int candidate = out_halfedges_[i];
+    for (auto it = first; it != last; ++it) {
+      const int candidate = it->second;
       if (!available(candidate)) continue;
       const Vec3 direction =
           mesh_.positions[topology_.halfedge_target(mesh_, candidate)] - mesh_.positions[b];
@@ -102,9 +93,8 @@ class BoundaryWalk {
   const Mesh& mesh_;
   const MeshTopology& topology_;
   const FaceComponents& components_;
-  std::vector<char> visited_;
-  std::vector<int> boundary_degree_;
-  std::vector<int> out_offsets_, out_halfedges_;
+  std::vector<bool> visited_;                 // per half-edge
+  std::vector<std::pair<int, int>> leaving_;  // (source, half-edge) of the boundary's, ascending
 };
 
 // The loop of a closed walk: its vertices, perimeter and vector area (eq. 1).
