@@ -1,9 +1,9 @@
 // Adjacency of a triangle mesh: half-edges, their opposites and the faces around each vertex; the
-// list of undirected edges on request. Built in O(V + E): each edge grouped at its lower vertex
-// from that vertex's faces, ranges of vertices in parallel for a large mesh (the same result at
-// any thread count); no hashing. The topology a repair holds is 4 ints a face and 1 a vertex: the
-// faces around a vertex are found by walking round it through the opposites, listed only where
-// no walk reaches them all.
+// list of undirected edges on request. Built in O(V + E): each edge's half-edges chained at its
+// lower vertex (in the array that then holds the opposites), ranges of vertices in parallel for
+// a large mesh (the same result at any thread count); no hashing. The topology is 3 ints a face
+// and 1 a vertex: the faces around a vertex are found by walking round it through the opposites,
+// listed only where no walk reaches them all.
 #pragma once
 
 #include <algorithm>
