@@ -1,13 +1,10 @@
 // The command's memory, on transparent huge pages where it pays (MADV_HUGEPAGE; the kernel's
 // default policy, "madvise", uses them only where asked): page faults were a quarter to a half of
 // a large repair or of a depth frame's fill in a fresh process.
-// - At start-up: freed blocks under 4 MB stay with the process (a command allocates and frees
-//   images of the same sizes again and again; glibc would map each block of 128 KB or more on its
-//   own, return it when freed and fault its pages in anew), and the heap's first 200 MB, shared
-//   by every thread, are advised. Blocks of 4 MB or more (a large mesh's arrays) are mapped on
-//   their own and returned when freed: kept in the heap, the holes they left were too small for
-//   the larger arrays that came next (a 1 M-face repair: 80 MB resident, 64 MB in use; 76 MB
-//   now, and 10 M faces 6.2 -> 5.3 s).
+// - At start-up: freed blocks stay with the process (a command allocates and frees images and
+//   meshes of the same sizes again and again; glibc would map each block of 128 KB or more on its
+//   own, return it when freed and fault its pages in anew), and the heap's first 200 MB,
+//   shared by every thread, are advised.
 // - operator new advises the whole huge pages of a block of 4 MB or more, wherever it lies (a
 //   mesh of millions of faces fills arrays of tens of megabytes once each: 10 M faces, 23 s
 //   against 15 s). Freeing stays glibc's operator delete (free).
@@ -40,16 +37,14 @@ void advise_huge_pages(void* block, std::size_t size) {
 constexpr std::size_t kHeapReserve = std::size_t{200} << 20;
 
 const bool heap_on_huge_pages = [] {
-  mallopt(M_TRIM_THRESHOLD, 512 << 20);         // freed blocks stay with the process
-  mallopt(M_ARENA_MAX, 1);                      // worker threads' blocks from the same heap
-  mallopt(M_MMAP_THRESHOLD, kHeapReserve + 1);  // the reserve from the heap
+  mallopt(M_MMAP_THRESHOLD, 256 << 20);  // every block from the heap, none mapped on its own
+  mallopt(M_TRIM_THRESHOLD, 512 << 20);  // freed blocks stay with the process
+  mallopt(M_ARENA_MAX, 1);               // worker threads' blocks from the same heap
   void* block = std::malloc(kHeapReserve);
-  if (block) {
-    advise_huge_pages(block, static_cast<char*>(sbrk(0)) - static_cast<char*>(block));
-    std::free(block);
-  }
-  mallopt(M_MMAP_THRESHOLD, static_cast<int>(kAdvisedSize));  // larger blocks mapped on their own
-  return block != nullptr;
+  if (!block) return false;
+  advise_huge_pages(block, static_cast<char*>(sbrk(0)) - static_cast<char*>(block));
+  std::free(block);
+  return true;
 }();
 
 }  // namespace
