@@ -90,7 +90,7 @@ class FileBytes {
           ::mmap(nullptr, size_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
       if (pages != MAP_FAILED) {
         pages_ = static_cast<char*>(pages);
-        ::madvise(pages_, size_, MADV_HUGEPAGE);  // 2 MB a fault, not 4 KB: a third of the read
+        ::madvise(pages_, size_, MADV_HUGEPAGE);  // 2 MB a fault, not 4 KB
         if (!read_exactly(fd)) release();
       }
     }
