@@ -1,7 +1,8 @@
 // Refinement and fairing of a hole's patch: Liepa's triangulation of the loop refined to the edge
 // lengths around it, its new vertices moved to minimise curvature variation (Liepa, "Filling
-// holes in meshes", 2003, as CGAL's Polygon Mesh Processing implements it), then remeshed to the
-// surroundings' mean edge length d_m and faired again.
+// holes in meshes", 2003, as CGAL's Polygon Mesh Processing implements it; the fairing's linear
+// system is solved here, by LDL^T), then remeshed to the surroundings' mean edge length d_m and
+// faired again.
 #pragma once
 
 #include "rangefill/core/mesh.h"
