@@ -25,8 +25,9 @@ using namespace cgal_triangles;
 struct IntersectionIndex::Tree {
   struct Grid {
     double cell = 1;
-    std::vector<int> bucket_offsets;                   // CSR over the buckets, size B + 1
-    std::vector<std::pair<std::uint64_t, int>> cells;  // (cell key, face), grouped by bucket
+    std::vector<int> bucket_offsets;   // CSR over the buckets, size B + 1
+    std::vector<std::uint64_t> cells;  // cell key of each entry, grouped by bucket
+    std::vector<int> faces;            // face of each entry
     size_t bucket(std::uint64_t key) const {
       return (key * 0x9E3779B97F4A7C15ull >> 20) % (bucket_offsets.size() - 1);
     }
@@ -42,7 +43,7 @@ struct IntersectionIndex::Tree {
   std::vector<Grid> grids;
   Vec3 cover_origin = Vec3::Zero();
   double cover_cell = 1;
-  std::vector<std::uint8_t> cover;  // per cell of the cover, row-major: a region meets it
+  std::vector<bool> cover;  // per cell of the cover, row-major: a region meets it
 
   Tree(const Mesh& indexed_mesh, std::vector<std::array<Vec3, 2>> near)
       : mesh(indexed_mesh), regions(std::move(near)) {}
@@ -67,6 +68,12 @@ struct IntersectionIndex::Tree {
   }
   Cells cells(const Vec3& low, const Vec3& high, double cell) const {
     return cells(low, high, origin, cell, kAxisCells);
+  }
+  // Key of the cell of grid `level` that holds `face`: that of its box's low corner.
+  std::uint64_t cell_of(int face, size_t level) const {
+    const Vec3 low = box(face).first;
+    const Cells at = cells(low, low, grids[level].cell);
+    return key(at[0][0], at[1][0], at[2][0]);
   }
   static long long count(const Cells& range) {
     long long n = 1;
@@ -95,7 +102,7 @@ struct IntersectionIndex::Tree {
   // Whether a query over [low, high] may read the grids alone.
   bool answers(const Vec3& low, const Vec3& high) const {
     return regions.empty() ||
-           every_cover_cell(low, high, [&](long long cell) { return cover[cell] != 0; });
+           every_cover_cell(low, high, [&](long long cell) { return cover[cell]; });
   }
 
   // The faces the grids hold: every face, or those near the regions.
@@ -110,10 +117,10 @@ struct IntersectionIndex::Tree {
     cover_origin = low;
     cover_cell =
         std::max((high - low).maxCoeff() / kCoverAxisCells, std::numeric_limits<double>::min());
-    cover.assign(kCoverAxisCells * kCoverAxisCells * kCoverAxisCells, 0);
+    cover.assign(kCoverAxisCells * kCoverAxisCells * kCoverAxisCells, false);
     for (const auto& [region_low, region_high] : regions) {
       every_cover_cell(region_low, region_high, [&](long long cell) {
-        cover[cell] = 1;
+        cover[cell] = true;
         return true;
       });
     }
@@ -122,8 +129,8 @@ struct IntersectionIndex::Tree {
     parallel_for(kMeshRanges, mesh_pass_threads(face_count), [&](int r) {
       for (int face = range_begin(face_count, r); face < range_begin(face_count, r + 1); ++face) {
         const auto [face_low, face_high] = box(face);
-        const bool meets_cover = !every_cover_cell(
-            face_low, face_high, [&](long long cell) { return cover[cell] == 0; });
+        const bool meets_cover =
+            !every_cover_cell(face_low, face_high, [&](long long cell) { return !cover[cell]; });
         if (meets_cover) found[r].push_back(face);
       }
     });
@@ -131,18 +138,22 @@ struct IntersectionIndex::Tree {
     return faces;
   }
 
+  // Each face's box is recomputed rather than stored, here and below: building holds little
+  // beyond the entries (a key and a face each), which the peak memory of a large repair feels.
   void build() {
     const std::vector<int> faces = faces_to_index();
     if (faces.empty()) return;
     Vec3 low = Vec3::Constant(std::numeric_limits<double>::max()), high = -low;
     double extent = 0;
-    std::vector<double> extents(faces.size());
-    for (size_t i = 0; i < faces.size(); ++i) {
-      const auto [face_low, face_high] = box(faces[i]);
+    const auto extent_of = [&](int face) {
+      const auto [face_low, face_high] = box(face);
+      return (face_high - face_low).maxCoeff();
+    };
+    for (const int face : faces) {
+      const auto [face_low, face_high] = box(face);
       low = low.cwiseMin(face_low);
       high = high.cwiseMax(face_high);
-      extents[i] = (face_high - face_low).maxCoeff();
-      extent += extents[i];
+      extent += (face_high - face_low).maxCoeff();
     }
     origin = low;
     // No more than kAxisCells cells along an axis.
@@ -152,10 +163,11 @@ struct IntersectionIndex::Tree {
     std::vector<std::uint8_t> levels(faces.size());
     std::vector<int> level_sizes;
     for (size_t i = 0; i < faces.size(); ++i) {
+      const double face_extent = extent_of(faces[i]);
       size_t level = 0;
-      while (level < grids.size() && grids[level].cell < extents[i]) ++level;
-      while (level == grids.size() || grids[level].cell < extents[i]) {
-        grids.push_back({grids.empty() ? first_cell : 4 * grids.back().cell, {}, {}});
+      while (level < grids.size() && grids[level].cell < face_extent) ++level;
+      while (level == grids.size() || grids[level].cell < face_extent) {
+        grids.push_back({grids.empty() ? first_cell : 4 * grids.back().cell, {}, {}, {}});
         level_sizes.push_back(0);
         level = grids.size() - 1;
       }
@@ -165,13 +177,11 @@ struct IntersectionIndex::Tree {
     for (size_t level = 0; level < grids.size(); ++level) {
       grids[level].bucket_offsets.assign(static_cast<size_t>(level_sizes[level]) + 2, 0);
       grids[level].cells.resize(level_sizes[level]);
+      grids[level].faces.resize(level_sizes[level]);
     }
-    std::vector<std::uint64_t> keys(faces.size());
     for (size_t i = 0; i < faces.size(); ++i) {
       Grid& grid = grids[levels[i]];
-      const Cells at = cells(box(faces[i]).first, box(faces[i]).first, grid.cell);
-      keys[i] = key(at[0][0], at[1][0], at[2][0]);
-      ++grid.bucket_offsets[grid.bucket(keys[i]) + 1];
+      ++grid.bucket_offsets[grid.bucket(cell_of(faces[i], levels[i])) + 1];
     }
     for (Grid& grid : grids) {
       std::partial_sum(grid.bucket_offsets.begin(), grid.bucket_offsets.end(),
@@ -184,7 +194,10 @@ struct IntersectionIndex::Tree {
     }
     for (size_t i = 0; i < faces.size(); ++i) {
       Grid& grid = grids[levels[i]];
-      grid.cells[cursors[levels[i]][grid.bucket(keys[i])]++] = {keys[i], faces[i]};
+      const std::uint64_t cell = cell_of(faces[i], levels[i]);
+      const int entry = cursors[levels[i]][grid.bucket(cell)]++;
+      grid.cells[entry] = cell;
+      grid.faces[entry] = faces[i];
     }
   }
 
@@ -200,7 +213,7 @@ struct IntersectionIndex::Tree {
     for (const Grid& grid : grids) {
       const Cells range = cells(low - Vec3::Constant(grid.cell), high, grid.cell);
       if (count(range) > static_cast<long long>(grid.cells.size())) {  // read them all
-        for (const auto& entry : grid.cells) faces.push_back(entry.second);
+        faces.insert(faces.end(), grid.faces.begin(), grid.faces.end());
         continue;
       }
       for (long long z = range[2][0]; z <= range[2][1]; ++z) {
@@ -209,7 +222,7 @@ struct IntersectionIndex::Tree {
             const std::uint64_t cell = key(x, y, z);
             const size_t bucket = grid.bucket(cell);
             for (int i = grid.bucket_offsets[bucket]; i < grid.bucket_offsets[bucket + 1]; ++i) {
-              if (grid.cells[i].first == cell) faces.push_back(grid.cells[i].second);
+              if (grid.cells[i] == cell) faces.push_back(grid.faces[i]);
             }
           }
         }

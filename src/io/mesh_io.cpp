@@ -292,6 +292,7 @@ void FaceBuilder::finish() {
     result_.warnings.push_back(name_ + ": " + std::to_string(polygons_triangulated_) +
                                " polygons with more than 3 vertices were triangulated");
   }
+  result_.mesh.face_hole.reserve(with_room_for_fills(result_.mesh.triangles.size()));
   result_.mesh.face_hole.resize(result_.mesh.triangles.size(), kOriginal);
 }
 
