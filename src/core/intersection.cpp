@@ -6,7 +6,8 @@
 #include <limits>
 #include <mutex>
 #include <numeric>
-#include <set>
+
+#include <CGAL/box_intersection_d.h>
 
 #include "core/cgal_triangles.h"
 #include "rangefill/core/parallel.h"
@@ -275,6 +276,36 @@ bool on_opposite_sides(const Point& p, const Point& q, const Point& r, const Poi
   return dot < -bound;
 }
 
+// Whether the segment cd certainly misses the triangle (p, a, b): along the triangle's normal, or
+// along a direction of its plane across one of its edges or across the segment, the segment's
+// ends and the triangle's corners project to intervals apart by more than rounding can hide (the
+// separating axes of the two, seen along the normal where they are coplanar). It filters the pairs
+// of faces round a shared vertex p before CGAL's do_intersect, which decides every such pair of a
+// subdivided mesh (flat round its vertices) in exact arithmetic.
+bool certainly_misses(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const Vec3 pa = a - p, pb = b - p, pc = c - p, pd = d - p;
+  const Vec3 normal = pa.cross(pb);
+  // A projection axis·(x − p) errs by a few units of 2^-52 of |axis| L (L the longest difference)
+  // and, through the rounding of the differences, of the largest coordinate times |axis|, which
+  // is at most L² for the normal and 2L³ across it: 1e-12 and 1e-13 are far beyond both.
+  const double longest = std::max({pa.norm(), pb.norm(), pc.norm(), pd.norm()});
+  const double largest =
+      std::max({p.cwiseAbs().maxCoeff(), a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff(),
+                c.cwiseAbs().maxCoeff(), d.cwiseAbs().maxCoeff()});
+  const auto separates = [&](const Vec3& axis, double axis_bound) {
+    const double bound = axis_bound * (1e-12 * longest + 1e-13 * largest);
+    const double at_a = axis.dot(pa), at_b = axis.dot(pb);  // p projects to 0
+    const double at_c = axis.dot(pc), at_d = axis.dot(pd);
+    return std::min(at_c, at_d) > std::max({0.0, at_a, at_b}) + bound ||
+           std::max(at_c, at_d) < std::min({0.0, at_a, at_b}) - bound;
+  };
+  const double square = longest * longest, across_bound = 2 * square * longest;
+  return separates(normal, square) || separates(normal.cross(pa), across_bound) ||
+         separates(normal.cross(pb), across_bound) ||
+         separates(normal.cross(Vec3(b - a)), across_bound) ||
+         separates(normal.cross(Vec3(d - c)), across_bound);
+}
+
 // Whether triangles t (query) and u (a face), which meet and share the vertices marked in
 // shared_t / shared_u, intersect elsewhere, as CGAL's self_intersections decides: sharing one
 // vertex, an edge opposite it crosses the other triangle; sharing an edge, they are coplanar and
@@ -288,6 +319,13 @@ bool meet_beyond_shared(const std::array<Point, 3>& t, const std::array<Point, 3
   };
   if (count == 1) {
     const int i = index_of(shared_t, true), j = index_of(shared_u, true);
+    const auto vec = [](const Point& point) { return Vec3(point.x(), point.y(), point.z()); };
+    if (certainly_misses(vec(u[j]), vec(u[(j + 1) % 3]), vec(u[(j + 2) % 3]), vec(t[(i + 1) % 3]),
+                         vec(t[(i + 2) % 3])) &&
+        certainly_misses(vec(t[i]), vec(t[(i + 1) % 3]), vec(t[(i + 2) % 3]), vec(u[(j + 1) % 3]),
+                         vec(u[(j + 2) % 3]))) {
+      return false;  // the usual case, without exact steps
+    }
     const CgalTriangle triangle_t(t[0], t[1], t[2]), triangle_u(u[0], u[1], u[2]);
     return CGAL::do_intersect(Segment(t[(i + 1) % 3], t[(i + 2) % 3]), triangle_u) ||
            CGAL::do_intersect(Segment(u[(j + 1) % 3], u[(j + 2) % 3]), triangle_t);
@@ -355,17 +393,60 @@ bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>
          meet_beyond_shared(first, second, shared_a, shared_b);
 }
 
+// The pairs of faces whose boxes meet come from CGAL's box intersection (a sweep over sorted
+// boxes), each pair once: a query per face read its grid cells and their faces again and again
+// (a million faces: 8 s against 3). The boxes are floats rounded outwards: half the memory, and
+// a pair they add is refused by the exact test.
 int count_self_intersections(const Mesh& mesh, const std::vector<int>& faces) {
-  const IntersectionIndex index(mesh);
-  const std::set<int> queried(faces.begin(), faces.end());
-  int count = 0;
-  for (int face : faces) {
+  using FaceBox =
+      CGAL::Box_intersection_d::Box_with_handle_d<float, 3, const Triangle*,
+                                                  CGAL::Box_intersection_d::ID_FROM_HANDLE>;
+  const auto box_of = [&](int face) {
     const Triangle& t = mesh.triangles[face];
-    for (int other : index.intersecting_faces(mesh.positions[t[0]], mesh.positions[t[1]],
-                                              mesh.positions[t[2]], t)) {
-      if (other != face && !(queried.count(other) && other < face)) ++count;
+    Vec3 low = mesh.positions[t[0]], high = low;
+    for (int corner : {t[1], t[2]}) {
+      low = low.cwiseMin(mesh.positions[corner]);
+      high = high.cwiseMax(mesh.positions[corner]);
     }
+    constexpr float kInfinity = std::numeric_limits<float>::infinity();
+    std::array<float, 3> float_low, float_high;
+    for (int axis = 0; axis < 3; ++axis) {
+      float_low[axis] = std::nextafter(static_cast<float>(low[axis]), -kInfinity);
+      float_high[axis] = std::nextafter(static_cast<float>(high[axis]), kInfinity);
+    }
+    return FaceBox(float_low.data(), float_high.data(), &t);
+  };
+  const auto face_of = [&](const FaceBox& box) {
+    return static_cast<int>(box.handle() - mesh.triangles.data());
+  };
+  const auto intersect = [&](int face, int other) {
+    const Triangle &t = mesh.triangles[face], &u = mesh.triangles[other];
+    return triangles_intersect({mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]},
+                               {mesh.positions[u[0]], mesh.positions[u[1]], mesh.positions[u[2]]},
+                               t, u);
+  };
+  std::vector<bool> queried(mesh.triangles.size(), false);
+  for (int face : faces) queried[face] = true;
+  std::vector<FaceBox> all_boxes, queried_boxes;
+  all_boxes.reserve(mesh.triangles.size());
+  for (int face = 0; face < mesh.face_count(); ++face) all_boxes.push_back(box_of(face));
+  int count = 0;
+  if (std::find(queried.begin(), queried.end(), false) == queried.end()) {  // each pair once
+    CGAL::box_self_intersection_d(
+        all_boxes.begin(), all_boxes.end(),
+        [&](const FaceBox& a, const FaceBox& b) { count += intersect(face_of(a), face_of(b)); });
+    return count;
   }
+  for (int face = 0; face < mesh.face_count(); ++face) {
+    if (queried[face]) queried_boxes.push_back(all_boxes[face]);
+  }
+  // A pair of queried faces comes twice, once from each.
+  CGAL::box_intersection_d(queried_boxes.begin(), queried_boxes.end(), all_boxes.begin(),
+                           all_boxes.end(), [&](const FaceBox& a, const FaceBox& b) {
+                             const int face = face_of(a), other = face_of(b);
+                             if (other == face || (queried[other] && other < face)) return;
+                             count += intersect(face, other);
+                           });
   return count;
 }
 
