@@ -1,6 +1,7 @@
 // Triangle intersection tests (exact predicates): pairs, the index of a mesh's faces, counts.
 #include "rangefill/core/intersection.h"
 
+#include <cmath>
 #include <numeric>
 #include <random>
 
@@ -97,6 +98,31 @@ TEST(IntersectionIndex, RegionsChangeTheCostNotTheAnswers) {
     meeting += !expected.empty();
   }
   EXPECT_GT(meeting, 1000);
+}
+
+// Faces round a shared vertex, in one plane as on a subdivided mesh: the others of a regular fan
+// meet the first only where they share corners, the opposite one too (its corners lie on the
+// lines of the first's edges); a face whose wedge overlaps the first's meets it, as does one whose
+// far edge pierces it out of the plane. The same far from the origin, at 1e-9 of its coordinates.
+TEST(TrianglesIntersect, FacesRoundASharedVertexMeetOnlyWhereTheyOverlap) {
+  for (const Vec3& centre : {Vec3(0, 0, 0), Vec3(1e3, -2e3, 5e2)}) {
+    const double size = centre.isZero() ? 1 : 1e-6;
+    const auto at = [&](double degrees, double radius = 1, double z = 0) {
+      const double angle = degrees * M_PI / 180;
+      return Vec3(centre + size * Vec3(radius * std::cos(angle), radius * std::sin(angle), z));
+    };
+    const std::array<Vec3, 3> first = {centre, at(0), at(60)};
+    for (int k = 1; k < 6; ++k) {  // vertices: the centre 0, at(60 j) j + 1
+      EXPECT_FALSE(triangles_intersect(first, {centre, at(60 * k), at(60 * k + 60)}, {0, 1, 2},
+                                       {0, k + 1, (k + 1) % 6 + 1}))
+          << "fan face " << k << " at " << centre.transpose();
+    }
+    EXPECT_TRUE(triangles_intersect(first, {centre, at(30), at(120)}, {0, 1, 2}, {0, 3, 4}));
+    EXPECT_TRUE(
+        triangles_intersect(first, {centre, at(30, 2, -1), at(30, 2, 1)}, {0, 1, 2}, {0, 3, 4}));
+    EXPECT_FALSE(
+        triangles_intersect(first, {centre, at(30, 2, 0.5), at(30, 2, 1)}, {0, 1, 2}, {0, 3, 4}));
+  }
 }
 
 // Two faces of a fill: one folded back onto its neighbour across their shared edge meets it.
