@@ -26,7 +26,8 @@ struct ReadResult {
 /// and normals are kept; polygons are triangulated (with a warning). The result passes
 /// validate_mesh. Throws IoError (cannot read) or InvalidInput (malformed; the message names the
 /// file and the problem). Memory is bounded by a small multiple of the file size whatever counts a
-/// header declares.
+/// header declares. A PLY or OFF mesh's arrays have room for a 64th more vertices and faces, so
+/// that `repair(std::move(mesh))` appends its fills without moving them.
 ReadResult read_mesh(const std::filesystem::path& path);
 
 /// Parses a mesh from memory; `name` is used in messages. What read_mesh does after loading the
