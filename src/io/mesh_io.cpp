@@ -78,20 +78,16 @@ namespace {
 // to the system once parsed: read into the heap, a large file left a hole as large as itself
 // that the arrays made later did not fit in, and the process's resident size kept it (a 1 M-face
 // repair: 90 MB, 64 MB of it in use). Other files (pipes, a file that grows meanwhile) as
-// read_file reads them; a pipe from the descriptor already open (opened again, it had lost what
-// its writer wrote and closed in between, and waited for a writer that never came).
+// read_file reads them, and opened there only: a pipe opened twice lost what its writer had
+// written and closed in between, and waited for a writer that never came.
 class FileBytes {
  public:
   explicit FileBytes(const fs::path& path) {
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
     struct stat status {};
-    if (fd >= 0 && ::fstat(fd, &status) == 0 && S_ISFIFO(status.st_mode)) {
-      const bool read = read_to_end(fd);
-      ::close(fd);
-      if (!read) throw IoError(path.string() + ": read error: " + std::strerror(errno));
-      return;
-    }
-    if (fd >= 0 && S_ISREG(status.st_mode) && status.st_size > 0) {
+    const bool regular =
+        ::stat(path.c_str(), &status) == 0 && S_ISREG(status.st_mode) && status.st_size > 0;
+    const int fd = regular ? ::open(path.c_str(), O_RDONLY | O_CLOEXEC) : -1;
+    if (fd >= 0) {
       size_ = static_cast<size_t>(status.st_size);
       void* pages =
           ::mmap(nullptr, size_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
@@ -100,8 +96,8 @@ class FileBytes {
         ::madvise(pages_, size_, MADV_HUGEPAGE);  // 2 MB a fault, not 4 KB
         if (!read_exactly(fd)) release();
       }
+      ::close(fd);
     }
-    if (fd >= 0) ::close(fd);
     if (!pages_) copy_ = read_file(path);
   }
   ~FileBytes() { release(); }
@@ -122,17 +118,6 @@ class FileBytes {
     }
     char more;
     return ::read(fd, &more, 1) == 0;
-  }
-  // Whether the descriptor was read to its end, into copy_.
-  bool read_to_end(int fd) {
-    char buffer[1 << 16];
-    for (;;) {
-      const ssize_t n = ::read(fd, buffer, sizeof buffer);
-      if (n < 0 && errno == EINTR) continue;
-      if (n < 0) return false;
-      if (n == 0) return true;
-      copy_.append(buffer, static_cast<size_t>(n));
-    }
   }
   void release() {
     if (pages_) ::munmap(pages_, size_);
