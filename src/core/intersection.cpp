@@ -342,13 +342,17 @@ bool meets(const CgalTriangle& t, const CgalTriangle& u, const std::array<bool, 
   return std::count(shared_t.begin(), shared_t.end(), true) > 0 || CGAL::do_intersect(t, u);
 }
 
-// Which corners of t and of u are the same vertex (ids; -1 is no vertex).
-std::pair<std::array<bool, 3>, std::array<bool, 3>> shared_corners(const Triangle& t,
-                                                                   const Triangle& u) {
+// Which corners of t and of u are the same vertex: the same id (-1 is no vertex), or two vertices
+// at the same point (a surface that touches itself there, as a welded mesh would share them).
+std::pair<std::array<bool, 3>, std::array<bool, 3>> shared_corners(
+    const Triangle& t, const std::array<Point, 3>& t_points, const Triangle& u,
+    const std::array<Point, 3>& u_points) {
   std::array<bool, 3> shared_t{}, shared_u{};
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
-      if (t[i] >= 0 && t[i] == u[j]) shared_t[i] = shared_u[j] = true;
+      if (t[i] >= 0 && u[j] >= 0 && (t[i] == u[j] || t_points[i] == u_points[j])) {
+        shared_t[i] = shared_u[j] = true;
+      }
     }
   }
   return {shared_t, shared_u};
@@ -371,7 +375,7 @@ std::vector<int> IntersectionIndex::intersecting_faces(const Vec3& a, const Vec3
                                         to_point(tree_->mesh.positions[u[2]])};
     const CgalTriangle other_triangle(other[0], other[1], other[2]);
     if (other_triangle.is_degenerate()) continue;
-    const auto [shared_query, shared_face] = shared_corners(corners, u);
+    const auto [shared_query, shared_face] = shared_corners(corners, query, u, other);
     if (meets(triangle, other_triangle, shared_query) &&
         meet_beyond_shared(query, other, shared_query, shared_face)) {
       faces.push_back(face);
@@ -388,7 +392,7 @@ bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>
   const CgalTriangle triangle_a(first[0], first[1], first[2]);
   const CgalTriangle triangle_b(second[0], second[1], second[2]);
   if (triangle_a.is_degenerate() || triangle_b.is_degenerate()) return false;
-  const auto [shared_a, shared_b] = shared_corners(ids_a, ids_b);
+  const auto [shared_a, shared_b] = shared_corners(ids_a, first, ids_b, second);
   return meets(triangle_a, triangle_b, shared_a) &&
          meet_beyond_shared(first, second, shared_a, shared_b);
 }

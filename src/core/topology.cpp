@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numeric>
 #include <optional>
+#include <set>
 
 #include "rangefill/core/parallel.h"
 
@@ -413,6 +414,23 @@ std::vector<int> unfillable_vertices(const Mesh& mesh, const MeshTopology& topol
     if (unfillable[v]) vertices.push_back(v);
   }
   return vertices;
+}
+
+std::vector<int> faces_within_rings(const Mesh& mesh, const MeshTopology& topology,
+                                    const std::vector<int>& vertices, int rings) {
+  std::set<int> front(vertices.begin(), vertices.end()), faces;
+  for (int ring = 0; ring < rings; ++ring) {
+    std::set<int> reached;
+    for (int v : front) {
+      for_each_face_of_vertex(topology, v, [&](int face) {
+        if (faces.insert(face).second) {
+          for (int corner : mesh.triangles[face]) reached.insert(corner);
+        }
+      });
+    }
+    front = std::move(reached);
+  }
+  return {faces.begin(), faces.end()};
 }
 
 }  // namespace rangefill

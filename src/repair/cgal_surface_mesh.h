@@ -19,24 +19,6 @@ using SurfaceMesh = CGAL::Surface_mesh<Kernel::Point_3>;
 using VertexIndex = SurfaceMesh::Vertex_index;
 using FaceIndex = SurfaceMesh::Face_index;
 
-/// The faces within `rings` rings of `vertices`, ascending.
-inline std::vector<int> faces_around(const MeshTopology& topology, const Mesh& mesh,
-                                     const std::vector<int>& vertices, int rings) {
-  std::set<int> front(vertices.begin(), vertices.end()), faces;
-  for (int ring = 0; ring < rings; ++ring) {
-    std::set<int> reached;
-    for (int v : front) {
-      for_each_face_of_vertex(topology, v, [&](int face) {
-        if (faces.insert(face).second) {
-          for (int corner : mesh.triangles[face]) reached.insert(corner);
-        }
-      });
-    }
-    front = std::move(reached);
-  }
-  return {faces.begin(), faces.end()};
-}
-
 /// Some faces of a mesh as a Surface_mesh, its vertices added in first use; `local` maps mesh
 /// vertex ids to them, `global` back (global[v] for the part's vertex v).
 struct MeshPart {

@@ -197,7 +197,7 @@ FillOutcome fill_by_fairing(const Mesh& mesh, const MeshTopology& topology,
   }
   if (hole.vertices.size() < 3) return Refused{Refusal::no_triangulation, ""};
   std::optional<MeshPart> part =
-      surroundings(mesh, faces_around(topology, mesh, hole.vertices, options.rings));
+      surroundings(mesh, faces_within_rings(mesh, topology, hole.vertices, options.rings));
   if (!part) return Refused{Refusal::not_manifold, "its surroundings are not a 2-manifold"};
   SurfaceMesh& surface = part->surface;
   const size_t original_faces = surface.number_of_faces();
@@ -209,10 +209,13 @@ FillOutcome fill_by_fairing(const Mesh& mesh, const MeshTopology& topology,
   }
   std::vector<FaceIndex> faces;
   std::vector<VertexIndex> vertices;
+  // Liepa's search over every triangle of the loop, not only those of its 3D Delaunay
+  // triangulation, whose visiting order follows heap addresses (see triangulate_loop_liepa).
   pmp::triangulate_and_refine_hole(
       surface, border, std::back_inserter(faces), std::back_inserter(vertices),
-      CGAL::parameters::use_2d_constrained_delaunay_triangulation(false).density_control_factor(
-          options.density));
+      CGAL::parameters::use_2d_constrained_delaunay_triangulation(false)
+          .use_delaunay_triangulation(false)
+          .density_control_factor(options.density));
   if (faces.empty()) return Refused{Refusal::no_triangulation, ""};
   if (!fair_inner_vertices(surface, vertices, options.continuity))
     return Refused{Refusal::error, "the fairing's linear system has no solution"};

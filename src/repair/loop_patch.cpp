@@ -31,9 +31,13 @@ std::vector<Triangle> triangulate_loop_liepa(const std::vector<Vec3>& loop,
     return points;
   };
   std::vector<CGAL::Triple<int, int, int>> patch;
+  // Over every triangle of the loop's vertices, not only those of their 3D Delaunay
+  // triangulation: the order in which CGAL's triangulation visits them depends on where the heap
+  // puts its cells, and so did the patch.
   pmp::triangulate_hole_polyline(
       points_of(loop), points_of(third_points), std::back_inserter(patch),
-      CGAL::parameters::use_2d_constrained_delaunay_triangulation(false));
+      CGAL::parameters::use_2d_constrained_delaunay_triangulation(false).use_delaunay_triangulation(
+          false));
   std::vector<Triangle> triangles;
   bool along_loop = false;  // whether the patch uses the edge 0 → 1 as the loop runs
   for (const auto& t : patch) {

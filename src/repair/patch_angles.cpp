@@ -261,7 +261,7 @@ Fill with_larger_angles(const Mesh& mesh, const MeshTopology& topology, Fill fil
     return fill;  // a loop through one vertex twice: no manifold part to flip and smooth on
   }
   MeshPart part;
-  for (int face : faces_around(topology, mesh, fill.boundary, 1)) {
+  for (int face : faces_within_rings(mesh, topology, fill.boundary, 1)) {
     if (!part.add_face(mesh, face)) return fill;
   }
   const size_t fill_faces = part.surface.number_of_faces();

@@ -179,11 +179,10 @@ std::vector<HoleReport> reports_for(const std::vector<const BoundaryLoop*>& loop
 
 // Step 2 of a pass: every chosen loop filled against the same surface, in parallel; a loop
 // through an unfillable vertex is refused without a try.
-std::vector<std::optional<Fill>> fill_pass(const SurfaceContext& surface,
-                                           const std::vector<const BoundaryLoop*>& loops,
-                                           const Inpainter& inpainter, const RepairOptions& options,
-                                           bool last_pass, const RepairState& state,
-                                           std::vector<HoleReport>& reports) {
+std::vector<std::optional<Fill>> fill_pass(
+    const SurfaceContext& surface, const std::vector<const BoundaryLoop*>& loops,
+    const Inpainter& inpainter, const CandidateFillers& candidates, const RepairOptions& options,
+    bool last_pass, const RepairState& state, std::vector<HoleReport>& reports) {
   std::mutex callback_mutex;  // workers report one at a time
   FillOptions fill_options = options;
   if (options.on_images) {
@@ -206,15 +205,14 @@ std::vector<std::optional<Fill>> fill_pass(const SurfaceContext& surface,
                        std::to_string(defect) + ")";
     } else {
       try {
-        fills[i] = fill_by_chain(surface, loop, inpainter, fill_options, last_pass, report);
+        fills[i] = fill_by_selection(surface, loop, candidates, options.selection.band_rings,
+                                     inpainter, fill_options, last_pass, report);
       } catch (const std::exception& error) {
         report.failure = error.what();
       }
     }
-    if (!fills[i]) {
-      report.seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    }
+    report.seconds =  // the band tests included
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (options.on_hole) {
       std::lock_guard<std::mutex> lock(callback_mutex);
       options.on_hole(report);
@@ -359,8 +357,8 @@ struct PassFills {
 // The first pass also takes d_m, the restoration matrix's first row, the defects and the
 // unfillable vertices.
 PassFills fill_loops(const Mesh& mesh, int pass, const Inpainter& inpainter,
-                     const RepairOptions& options, double& mean_edge, RepairState& state,
-                     RepairResult& result) {
+                     const CandidateFillers& candidates, const RepairOptions& options,
+                     double& mean_edge, RepairState& state, RepairResult& result) {
   SurfaceContext surface(mesh, mean_edge);
   if (pass == 0) {
     mean_edge = surface.mean_edge;
@@ -380,8 +378,8 @@ PassFills fill_loops(const Mesh& mesh, int pass, const Inpainter& inpainter,
   PassFills filled;
   filled.chosen = choose_loops(surface.holes, pass, options, state);
   filled.reports = reports_for(filled.chosen, pass, state);
-  filled.fills = fill_pass(surface, filled.chosen, inpainter, options, pass == options.passes - 1,
-                           state, filled.reports);
+  filled.fills = fill_pass(surface, filled.chosen, inpainter, candidates, options,
+                           pass == options.passes - 1, state, filled.reports);
   filled.holes = std::move(surface.holes);  // the loops stay where `chosen` points
   return filled;
 }
@@ -398,10 +396,13 @@ RepairResult repair(Mesh&& input, const RepairOptions& options) {
   Mesh& mesh = result.mesh;
   const std::unique_ptr<Inpainter> inpainter =
       make_inpainter(options.inpainter, options.inpainting);
+  const CandidateFillers candidates(options.selection.candidates, options.inpainter,
+                                    options.inpainting);
   double mean_edge = 0;  // the input's d_m, used in every pass
   RepairState state;
   for (int pass = 0; pass < options.passes; ++pass) {
-    PassFills filled = fill_loops(mesh, pass, *inpainter, options, mean_edge, state, result);
+    PassFills filled =
+        fill_loops(mesh, pass, *inpainter, candidates, options, mean_edge, state, result);
     const bool next_pass = merge_pass(filled.chosen, filled.fills, filled.reports, state, result);
     state.next_id += static_cast<int>(filled.holes.loops.size());
     if (loops_follow_from_pass(filled.holes, next_pass)) {

@@ -53,6 +53,17 @@ TEST(TrianglesIntersect, SharedPointsCount) {
   EXPECT_FALSE(triangles_intersect(flat, {Vec3(-2, 0.5, 0), Vec3(0, 0.5, 0), Vec3(2, 0.5, 0)}));
 }
 
+// Two vertices at the same point (a surface touching itself, as at a cow's coincident vertices)
+// are shared as one: faces meeting only there do not intersect, faces crossing beyond it do.
+TEST(TrianglesIntersect, VerticesAtTheSamePointAreShared) {
+  const std::array<Vec3, 3> flat = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  const std::array<Vec3, 3> touching = {Vec3(0, 0, 0), Vec3(-1, 0, 1), Vec3(0, -1, 1)};
+  EXPECT_FALSE(triangles_intersect(flat, touching, {0, 1, 2}, {3, 4, 5}));
+  EXPECT_TRUE(triangles_intersect(flat, touching));  // unnamed corners: a point in common counts
+  const std::array<Vec3, 3> crossing = {Vec3(0, 0, 0), Vec3(0.5, 0.2, 1), Vec3(0.2, 0.5, -1)};
+  EXPECT_TRUE(triangles_intersect(flat, crossing, {0, 1, 2}, {3, 4, 5}));
+}
+
 // The index finds the faces a triangle meets beyond the corners it shares with them, as CGAL's
 // self_intersections decides: sharing a vertex, only an opposite edge crossing counts; sharing an
 // edge, only a fold onto the face; sharing all three corners, always.

@@ -4,7 +4,10 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <set>
 
@@ -272,6 +275,62 @@ TEST(Pipeline, ResultDoesNotDependOnThreadCount) {
                         sizeof(Vec3) * one.mesh.positions.size()),
             0);
   EXPECT_EQ(one.restoration_matrix, three.restoration_matrix);
+}
+
+// The shared sphere with the six holes the mesh kit punches with seed 3 (the faces it removes,
+// listed in tests/repair/sphere-seed3-removed-faces.txt), unused vertices dropped as the kit does.
+Mesh kit_punched_sphere(const std::filesystem::path& data) {
+  const Mesh sphere = read_mesh(data / "meshes" / "sphere.ply").mesh;
+  std::ifstream list(std::filesystem::path(RANGEFILL_SOURCE_DIR) / "tests" / "repair" /
+                     "sphere-seed3-removed-faces.txt");
+  std::set<int> removed{std::istream_iterator<int>(list), std::istream_iterator<int>()};
+  EXPECT_EQ(removed.size(), 2822u);
+  std::vector<int> renumbered(sphere.vertex_count(), -1);
+  std::vector<Triangle> kept;
+  for (int f = 0; f < sphere.face_count(); ++f) {
+    if (!removed.count(f)) kept.push_back(sphere.triangles[f]);
+  }
+  for (const Triangle& t : kept) {
+    for (int v : t) renumbered[v] = 0;
+  }
+  std::vector<Vec3> positions;
+  for (int v = 0; v < sphere.vertex_count(); ++v) {
+    if (renumbered[v] == 0) {
+      renumbered[v] = static_cast<int>(positions.size());
+      positions.push_back(sphere.positions[v]);
+    }
+  }
+  for (Triangle& t : kept) {
+    for (int& v : t) v = renumbered[v];
+  }
+  return make_mesh(positions, kept);
+}
+
+// Blocks of many sizes, every other one freed, kept until the next pattern: the repair that follows
+// gets its memory from other places.
+std::vector<std::unique_ptr<char[]>> scatter_heap(unsigned seed) {
+  std::vector<std::unique_ptr<char[]>> blocks;
+  for (int i = 0; i < 20000; ++i) {
+    seed = seed * 1103515245u + 12345u;
+    blocks.emplace_back(new char[16 + (seed >> 8) % 6000]);
+    if (i % 2) blocks[i - 1].reset();
+  }
+  return blocks;
+}
+
+// The same bytes whatever the heap looks like: the fairing's hole triangulation once followed the
+// addresses of CGAL's Delaunay cells, and one hole of this sphere came out otherwise.
+TEST(Pipeline, ResultDoesNotDependOnTheHeap) {
+  RANGEFILL_REQUIRE_SHARED(data);
+  const Mesh holed = kit_punched_sphere(data);
+  const std::string first = serialize_mesh(repair(holed).mesh, MeshFormat::ply);
+  for (unsigned pattern = 1; pattern <= 4; ++pattern) {
+    const auto blocks = scatter_heap(pattern);
+    RepairOptions options;
+    options.threads = 1 + pattern % 2;
+    EXPECT_EQ(serialize_mesh(repair(holed, options).mesh, MeshFormat::ply), first)
+        << "heap pattern " << pattern;
+  }
 }
 
 // ------------------------------------------------------------------------------------------------

@@ -27,6 +27,7 @@ struct RepairCommand {
   std::string filler = filler_name(kDefaultFiller);  // RepairOptions' strategies: the chain of
   std::string fallback = kDefaultFallbacks;          // this filler and these fallbacks
   std::string mesher = "greedy";
+  std::string select = kDefaultCandidates;
   bool in_place = false, json = false, ascii = false, fill_all = false;
 };
 
@@ -166,6 +167,7 @@ void check_arguments(RepairCommand& command) {
   command.options.trend = trend_from_name(command.trend);
   if (command.fill_all) command.options.border_share = 0;
   command.options.strategies = strategies_from_arguments(command.filler, command.fallback);
+  command.options.selection.candidates = parse_candidates(command.select);
 }
 
 // The input mesh; a point cloud meshed first (unless --mesher none, which refuses it).
@@ -365,6 +367,16 @@ void add_repair_command(CLI::App& app, Runner& runner) {
          "plane, front, least-area (a patch of its loop without new vertices: Liepa's weight, "
          "else least area), or none")
       ->capture_default_str();
+  sub->add_option("--select", command->select,
+                  "Candidates scored on each hole by a band test (a band of known faces hidden "
+                  "round the hole, the enlarged hole filled by each, the fill nearest the band "
+                  "wins), tried before the filler: fairing[:c0|:c1|:c2], plane[:BACKEND], front; "
+                  "or none")
+      ->capture_default_str();
+  sub->add_option("--select-band", options.selection.band_rings,
+                  "Rings of known faces the band test hides round a hole")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 20));
   sub->add_option("--mesher", command->mesher,
                   "For a point cloud (points, no faces): greedy (PCL's greedy projection, "
                   "Gopi & Krishnan) meshes it first; none refuses it")

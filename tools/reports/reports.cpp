@@ -19,6 +19,12 @@ nlohmann::json hole_json(const HoleReport& hole) {
                         {"refusal", refusal_name(attempt.refused.refusal)},
                         {"detail", attempt.refused.detail}});
   }
+  nlohmann::json selection = nlohmann::json::array();
+  for (const CandidateScore& score : hole.selection) {
+    selection.push_back({{"candidate", score.candidate},
+                         {"band_rms", score.score ? nlohmann::json(*score.score) : nullptr},
+                         {"seconds", score.seconds}});
+  }
   return {{"id", hole.id},
           {"pass", hole.pass},
           {"loop", hole.loop},
@@ -43,6 +49,8 @@ nlohmann::json hole_json(const HoleReport& hole) {
             {"front", hole.stages.front},
             {"fairing", hole.stages.fairing}}},
           {"method", hole.method},
+          {"selection", selection},
+          {"selected", hole.selected},
           {"other_holes", hole.other_holes},
           {"filled", hole.filled},
           {"rim_support", hole.rim_support},

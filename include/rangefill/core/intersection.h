@@ -28,7 +28,8 @@ class IntersectionIndex {
   IntersectionIndex& operator=(IntersectionIndex&&) noexcept;
 
   /// Faces that intersect the triangle (a, b, c) other than where they share vertices with
-  /// `corners` (mesh vertex ids of the triangle's corners; -1 for a corner not in the mesh), as
+  /// `corners` (mesh vertex ids of the triangle's corners, or vertices at the same point; -1 for a
+  /// corner not in the mesh), as
   /// CGAL's self_intersections decides: a face sharing one vertex intersects when an edge of one
   /// opposite that vertex crosses the other; sharing an edge, when the two are coplanar and folded
   /// onto each other; sharing all three, always. A degenerate triangle meets nothing.
@@ -42,7 +43,8 @@ class IntersectionIndex {
 
 /// Whether two triangles intersect beyond the vertices they share, as
 /// IntersectionIndex::intersecting_faces decides; `ids_a`, `ids_b` name their corners (-1: a
-/// corner no other triangle has). Degenerate triangles meet nothing.
+/// corner no other triangle has). Two named corners at the same point are shared, as a welded
+/// mesh would share them (a surface that touches itself there). Degenerate triangles meet nothing.
 bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b,
                          const Triangle& ids_a = {-1, -1, -1},
                          const Triangle& ids_b = {-1, -1, -1});

@@ -68,6 +68,13 @@ struct Attempt {
   Refused refused;
 };
 
+/// One candidate filler's band test (selection.h).
+struct CandidateScore {
+  std::string candidate;
+  std::optional<double> score;  // RMS distance to the hidden band over d_m; none when refused
+  double seconds = 0;
+};
+
 /// What happened to one hole.
 struct HoleReport {
   int id = 0;    // unique over the run; the provenance of what it generated. In pass 0 it is the
@@ -97,11 +104,13 @@ struct HoleReport {
   } stages;
   std::vector<int> other_holes;  // other loops the zone reached
   bool filled = false;
-  std::optional<Strategy> strategy;  // what filled it
-  std::string method;                // who filled it, for tables: the strategy's name, or a
-                                     // baseline's (baselines.h)
-  std::vector<Attempt> attempts;     // every refusal, in the order met
-  std::string failure;               // when not filled: the refusals in one line
+  std::optional<Strategy> strategy;       // what filled it
+  std::string method;                     // who filled it, for tables: the strategy's name, or a
+                                          // baseline's (baselines.h)
+  std::vector<CandidateScore> selection;  // the band tests, when candidates were scored
+  std::string selected;                   // the candidate that filled it, if one did
+  std::vector<Attempt> attempts;          // every refusal, in the order met
+  std::string failure;                    // when not filled: the refusals in one line
 };
 
 /// Everything a person needs to look at one hole's images (see FillOptions::on_images).

@@ -14,6 +14,7 @@
 #include "rangefill/repair/fill.h"
 #include "rangefill/repair/fill_chain.h"
 #include "rangefill/repair/holes.h"
+#include "rangefill/repair/selection.h"
 
 namespace rangefill {
 
@@ -24,8 +25,9 @@ struct RepairOptions : FillOptions {
   /// With `holes` empty, input loops for which is_border(loop, border_share) holds are left open
   /// as the border of an open surface (holes.h); 0 fills them too.
   double border_share = kBorderShare;
-  int max_hole_edges = 0;    // loops with more boundary edges are left open; 0 = no limit
-  double max_hole_area = 0;  // loops with a larger area are left open; 0 = no limit
+  int max_hole_edges = 0;      // loops with more boundary edges are left open; 0 = no limit
+  double max_hole_area = 0;    // loops with a larger area are left open; 0 = no limit
+  SelectionOptions selection;  // each hole's filler chosen by a band test (selection.h)
   int passes = 8;  // rounds of detect–fill–merge (Section IX); complex holes take one per part
   int threads = hardware_threads();  // holes of a pass filled at once; the result does not
                                      // depend on it
