@@ -192,6 +192,7 @@ double azimuth_degrees(const Vec3& p) {
 RepairOptions paper_chain() {
   RepairOptions options;
   options.strategies = strategy_chain(Filler::plane, "front,least-area");
+  options.selection.candidates.clear();  // the chain alone
   return options;
 }
 

@@ -59,6 +59,7 @@ std::vector<HoleScore> score_repair(const Mesh& original, const PunchResult& pun
     score.new_faces = report.new_faces;
     score.seconds = report.seconds;
     score.method = report.method;
+    score.selected = report.selected;
     score.zone_faces = report.zone_faces;
     score.stages = report.stages;
     if (!report.filled) continue;

@@ -10,16 +10,18 @@
 #include <iterator>
 #include <map>
 #include <optional>
+#include <set>
 #include <vector>
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
+#include <CGAL/Polygon_mesh_processing/refine.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
-#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/Weights/cotangent_weights.h>
 
 #include "rangefill/core/errors.h"
+#include "rangefill/repair/loop_patch.h"
 #include "repair/cgal_surface_mesh.h"
 
 namespace rangefill {
@@ -117,6 +119,41 @@ bool fair_inner_vertices(SurfaceMesh& surface, const std::vector<VertexIndex>& i
   return true;
 }
 
+// The loop's patch by Liepa's weight (triangulate_loop_liepa, as CGAL's triangulate_hole, whose
+// result follows heap addresses), added to `surface` (a copy, left as it is when this fails);
+// none when the loop has no such patch.
+std::vector<FaceIndex> triangulate_loop(SurfaceMesh& surface, const MeshPart& part,
+                                        const BoundaryLoop& hole) {
+  const int n = static_cast<int>(hole.vertices.size());
+  std::vector<VertexIndex> loop;
+  std::vector<Vec3> positions, third_points;
+  auto position = [&](VertexIndex v) {
+    const auto& p = surface.point(v);
+    return Vec3(p.x(), p.y(), p.z());
+  };
+  for (int v : hole.vertices) loop.push_back(part.local.at(v));
+  for (int k = 0; k < n; ++k) {
+    positions.push_back(position(loop[k]));
+    // The face outside holds v_k → v_k+1; its third corner is where that half-edge's next ends.
+    const auto along = surface.halfedge(loop[k], loop[(k + 1) % n]);
+    if (along == SurfaceMesh::null_halfedge()) return {};
+    third_points.push_back(position(surface.target(surface.next(along))));
+  }
+  std::set<std::pair<int, int>> chords;  // the surroundings' edges between loop vertices
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 2; j < n; ++j) {
+      if (surface.halfedge(loop[i], loop[j]) != SurfaceMesh::null_halfedge()) chords.insert({i, j});
+    }
+  }
+  std::vector<FaceIndex> faces;
+  for (const Triangle& t : triangulate_loop_liepa(positions, third_points, chords)) {
+    const FaceIndex face = surface.add_face(loop[t[0]], loop[t[1]], loop[t[2]]);
+    if (face == SurfaceMesh::null_face()) return {};
+    faces.push_back(face);
+  }
+  return faces;
+}
+
 // The surroundings as a mesh part; nullopt when they do not form an oriented 2-manifold (the hole
 // is then not a CGAL border).
 std::optional<MeshPart> surroundings(const Mesh& mesh, const std::vector<int>& faces) {
@@ -207,15 +244,11 @@ FillOutcome fill_by_fairing(const Mesh& mesh, const MeshTopology& topology,
   if (border == SurfaceMesh::null_halfedge() || !surface.is_border(border)) {
     return Refused{Refusal::not_manifold, "its loop is not a border of its surroundings"};
   }
-  std::vector<FaceIndex> faces;
+  std::vector<FaceIndex> faces = triangulate_loop(surface, *part, hole);
   std::vector<VertexIndex> vertices;
-  // Liepa's search over every triangle of the loop, not only those of its 3D Delaunay
-  // triangulation, whose visiting order follows heap addresses (see triangulate_loop_liepa).
-  pmp::triangulate_and_refine_hole(
-      surface, border, std::back_inserter(faces), std::back_inserter(vertices),
-      CGAL::parameters::use_2d_constrained_delaunay_triangulation(false)
-          .use_delaunay_triangulation(false)
-          .density_control_factor(options.density));
+  pmp::refine(surface, std::vector<FaceIndex>(faces), std::back_inserter(faces),
+              std::back_inserter(vertices),
+              CGAL::parameters::density_control_factor(options.density));
   if (faces.empty()) return Refused{Refusal::no_triangulation, ""};
   if (!fair_inner_vertices(surface, vertices, options.continuity))
     return Refused{Refusal::error, "the fairing's linear system has no solution"};

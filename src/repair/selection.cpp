@@ -163,7 +163,6 @@ FillOptions candidate_options(const FillOptions& options, const Candidate& candi
   FillOptions alone = options;
   alone.strategies = {candidate.strategy};
   alone.fairing.continuity = candidate.continuity;
-  alone.on_images = nullptr;
   return alone;
 }
 
@@ -201,9 +200,10 @@ std::optional<Fill> fill_by_selection(const SurfaceContext& surface, const Bound
         fillers.inpainters[i] ? *fillers.inpainters[i] : inpainter;
     const auto start = std::chrono::steady_clock::now();
     HoleReport scratch;
+    FillOptions on_band = candidate_options(options, candidate);
+    on_band.on_images = nullptr;  // the images are of the hole itself
     const std::optional<Fill> fill =
-        fill_by_chain(band_surface, test->hole, candidate_inpainter,
-                      candidate_options(options, candidate), false, scratch);
+        fill_by_chain(band_surface, test->hole, candidate_inpainter, on_band, false, scratch);
     CandidateScore score{candidate.name, std::nullopt, 0};
     if (fill) score.score = band_distance(*test, *fill) / surface.mean_edge;
     score.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

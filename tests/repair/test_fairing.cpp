@@ -72,16 +72,18 @@ TEST(FillByFairing, RestoresASphereCapAtTheDensityAround) {
                InvalidInput);
 }
 
-// A hole across a sharp edge of a box, by the default chain: filled, the output a closed
-// 2-manifold with the input's elements bit for bit, no generated face meeting another face, and
-// the patch near the box (the edge is rounded, not lost).
+// A hole across a sharp edge of a box, by the default chain without selection: filled, the output a
+// closed 2-manifold with the input's elements bit for bit, no generated face meeting another face,
+// and the patch near the box (the edge is rounded, not lost).
 TEST(FillByFairing, AHoleOnASharpEdgeKeepsTheIntegrityRules) {
   const int n = 24;
   const Vec3 centre(0.5, 1, 1);  // on the edge y = z = 1
   const Mesh box = testing::make_box(n);
   const Mesh holed =
       testing::remove_faces(box, [&](const Vec3& p) { return (p - centre).norm() < 0.2; });
-  const RepairResult result = repair(holed, RepairOptions{});
+  RepairOptions options;
+  options.selection.candidates.clear();  // the chain alone: the faired patch first
+  const RepairResult result = repair(holed, options);
   ASSERT_EQ(result.holes.size(), 1u);
   ASSERT_TRUE(result.holes[0].filled) << result.holes[0].failure;
   EXPECT_EQ(result.holes[0].strategy, Strategy::fairing);

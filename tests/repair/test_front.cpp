@@ -76,6 +76,7 @@ TEST(FrontFiller, ClosesASphereCapOnTheSphere) {
   const double mean_edge = mean_edge_length(cut);
   RepairOptions options = testing::paper_chain();
   options.strategies = strategy_chain(Filler::front, "least-area");
+  options.selection.candidates.clear();  // the chain alone
   const RepairResult result = repair(cut, options);
   expect_one_hole_closed_by(cut, result, Strategy::front);
   ASSERT_GT(result.mesh.vertex_count(), cut.vertex_count() + 100);
@@ -136,6 +137,7 @@ TEST(FrontFiller, ClosesAHoleWrappedRoundATube) {
 
   RepairOptions planes_only;
   planes_only.strategies = strategy_chain(Filler::plane, "none");
+  planes_only.selection.candidates.clear();  // the chain alone
   const RepairResult parts = repair(cut, planes_only);
   ASSERT_FALSE(parts.holes.empty());
   EXPECT_EQ(parts.holes[0].strategy, Strategy::plane_in_part);
@@ -170,6 +172,7 @@ TEST(FrontFiller, LastPassPatchesTheWholeLoopRatherThanAPart) {
   RepairOptions one_pass;
   one_pass.passes = 1;
   one_pass.strategies = strategy_chain(Filler::plane, "none");
+  one_pass.selection.candidates.clear();  // the chain alone
   const RepairResult part = repair(cut, one_pass);
   ASSERT_EQ(part.holes.size(), 1u);
   EXPECT_EQ(part.holes[0].strategy, Strategy::plane_in_part);

@@ -238,6 +238,7 @@ TEST(Pipeline, ColourGradientIsContinuedAcrossTheHole) {
     options.trend = c.trend;
     options.strategies =
         strategy_chain(c.filler, c.filler == Filler::plane ? "front,least-area" : "least-area");
+    options.selection.candidates.clear();  // the chain alone
     options.holes = {sheet.hole.id};
     const RepairResult result = repair(sheet.mesh, options);
     ASSERT_TRUE(result.holes.at(0).filled) << result.holes[0].failure;
@@ -386,6 +387,7 @@ HardOutcome repair_hard_case(const Mesh& truth, const Mesh& holed, const RepairO
 RepairOptions planes_only() {
   RepairOptions options;
   options.strategies = strategy_chain(Filler::plane, "none");
+  options.selection.candidates.clear();  // the chain alone
   return options;
 }
 
@@ -500,7 +502,9 @@ TEST(HardHoles, TwoHolesWhoseFillsWouldMeetAreFilledOneAfterTheOther) {
     return (p - axis).head<2>().norm() < 0.5 * bump_radius && p.z() > 0 && p.z() < 1;
   });
   ASSERT_EQ(find_holes(holed, build_topology(holed)).loops.size(), 2u);
-  const RepairResult result = repair(holed, RepairOptions{});
+  RepairOptions options;
+  options.selection.candidates.clear();  // the faired patches (C2), which meet
+  const RepairResult result = repair(holed, options);
   int set_aside = 0;
   for (const HoleReport& hole : result.holes) {
     for (const Attempt& attempt : hole.attempts) {

@@ -27,7 +27,9 @@ struct BenchCommand {
   std::string inpainters, baselines, trends = "auto", csv, save, out,
                                      filler = filler_name(kDefaultFiller);
   std::string fallback = kDefaultFallbacks, shapes = "disk,elongated", shard;
-  std::vector<std::string> merge;  // shard directories to make the report of
+  std::string select = "fairing,fairing:c1,plane";  // "plane": each method's own back-end
+  std::vector<Candidate> candidates;                // of --select
+  std::vector<std::string> merge;                   // shard directories to make the report of
   PunchOptions punch = [] {
     PunchOptions options;
     options.max_radius = 20;
@@ -69,6 +71,7 @@ json score_json(const HoleScore& s) {
           {"new_faces", s.new_faces},
           {"seconds", s.seconds},
           {"method", s.method},
+          {"selected", s.selected},
           {"zone_faces", s.zone_faces},
           {"stages", {t.zone, t.planes, t.image, t.inpainting, t.stitching, t.checking, t.front}}};
 }
@@ -86,6 +89,7 @@ HoleScore score_from_json(const json& j) {
   s.new_faces = j.at("new_faces");
   s.seconds = j.at("seconds");
   s.method = j.at("method");
+  s.selected = j.at("selected");
   s.zone_faces = j.at("zone_faces");
   const json& t = j.at("stages");
   s.stages = {t[0], t[1], t[2], t[3], t[4], t[5], t[6]};
@@ -179,7 +183,7 @@ std::string csv_table(const BenchResults& results) {
          "edge_ratio,new_vertices,new_faces,seconds,filler,zone_faces,zone_s,planes_s,image_s,"
          "inpainting_s,stitching_s,checking_s,front_s,failure,shape,radius_dm,length_dm,area_dm2,"
          "bending,curvature,sharp_feature,hausdorff_dm,from_patch_dm,from_truth_dm,"
-         "mean_distance_dm,self_intersections,manifold,wall_s\n";
+         "mean_distance_dm,self_intersections,manifold,wall_s,selected\n";
   for (size_t h = 0; h < results.holes.size(); ++h) {
     const BenchHole& hole = results.holes[h];
     const double d_m = hole.mean_edge;
@@ -199,7 +203,7 @@ std::string csv_table(const BenchResults& results) {
           << curvature_name(hole.hole.curvature) << ',' << hole.hole.sharp_feature << ','
           << d.hausdorff / d_m << ',' << d.from_first / d_m << ',' << d.from_second / d_m << ','
           << d.mean / d_m << ',' << run.self_intersections << ',' << run.manifold << ','
-          << run.wall_seconds << '\n';
+          << run.wall_seconds << ',' << csv_text(s.selected) << '\n';
     }
   }
   return csv.str();
@@ -235,6 +239,21 @@ void print_summary(const BenchResults& results, const BenchSummary& summary,
                 results.methods[m].c_str(), s.filled, results.holes.size(), s.closed_meshes,
                 summary.meshes, s.hausdorff_median, s.hausdorff_max, s.mean_distance_median, edge,
                 pcc, s.self_intersections, s.seconds_median);
+  }
+  bool header = false;
+  for (size_t m = 0; m < results.methods.size(); ++m) {
+    const MethodSummary& s = summary.methods[m];
+    if (s.chosen_holes.empty()) continue;
+    if (!header) {
+      std::printf("\nwhere the band test chose the image pipeline, H median / d_m of:\n%-18s %5s",
+                  "back-end", "holes");
+      for (const std::string& method : results.methods) std::printf(" %10.10s", method.c_str());
+      std::printf("\n");
+      header = true;
+    }
+    std::printf("%-18s %5zu", results.methods[m].c_str(), s.chosen_holes.size());
+    for (double value : s.hausdorff_median_where_chosen) std::printf(" %10.3f", value);
+    std::printf("\n");
   }
   std::printf(
       "\nplaces by H (Table 3) on %zu holes (every back-end filled %d of them alike), %%:\n%-18s",
@@ -275,6 +294,7 @@ std::vector<BenchmarkMethod> bench_methods(const BenchCommand& command) {
       options.inpainting = command.inpainting;
       options.trend = trend;
       options.strategies = strategies_from_arguments(command.filler, command.fallback);
+      options.selection.candidates = command.candidates;
       methods.push_back(
           pipeline_method(inpainter + (trends.size() > 1 ? "+" + trend_name(trend) : ""), options));
     }
@@ -448,6 +468,7 @@ json bench_configuration(const BenchCommand& command, const std::vector<fs::path
           {"trends", command.trends},
           {"filler", command.filler},
           {"fallback", command.fallback},
+          {"select", command.select},
           {"area_classes", command.area_classes},
           {"tie", command.tie}};
 }
@@ -718,6 +739,10 @@ void add_bench_command(CLI::App& app, Runner& runner) {
   sub->add_option("--fallback", command->fallback,
                   "fairing, plane, front, least-area in the order tried, or none")
       ->capture_default_str();
+  sub->add_option("--select", command->select,
+                  "Candidates of each back-end's band test (as repair --select; plane alone is the "
+                  "method's own back-end; none when --filler or --fallback is given without it)")
+      ->capture_default_str();
   sub->add_option("--threads", command->threads, "Holes filled at once (each in a process)")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));
@@ -746,7 +771,10 @@ void add_bench_command(CLI::App& app, Runner& runner) {
   sub->add_option("--merge", command->merge,
                   "Report on the shards in these directories (written by --shard) as the "
                   "unsharded run would, into --out DIR");
-  sub->callback([command, &runner] { runner = [command] { return run_bench(*command); }; });
+  sub->callback([command, sub, &runner] {
+    command->candidates = candidates_from_arguments(*sub, command->select);
+    runner = [command] { return run_bench(*command); };
+  });
 }
 
 }  // namespace rangefill::cli

@@ -245,6 +245,21 @@ std::vector<Table> tables(const BenchResults& results, const BenchSummary& summa
         backends, summary.backends, summary.backend_first_share_intervals));
   }
 
+  Table chosen{
+      "Where the band test chose the image pipeline (repair --select): each method's H "
+      "median / d_m on the holes where the row's back-end filled the hole",
+      {"back-end", "holes"},
+      {}};
+  for (const std::string& method : results.methods) chosen.header.push_back(method);
+  for (size_t m = 0; m < results.methods.size(); ++m) {
+    const MethodSummary& s = summary.methods[m];
+    if (s.chosen_holes.empty()) continue;
+    std::vector<std::string> row = {results.methods[m], std::to_string(s.chosen_holes.size())};
+    for (double value : s.hausdorff_median_where_chosen) row.push_back(fixed(value, 3));
+    chosen.rows.push_back(std::move(row));
+  }
+  if (!chosen.rows.empty()) all.push_back(std::move(chosen));
+
   Table correlation{
       "Pearson correlation of H / d_m with area / d_m² (Table 4) and edge ratio "
       "(Table 8), over the holes each method closed",
@@ -570,6 +585,23 @@ BenchSummary summarize(const BenchResults& results, int area_classes, double tie
       summary.best = static_cast<int>(m);
     }
   }
+  for (size_t m = 0; m < methods; ++m) {
+    MethodSummary& s = summary.methods[m];
+    for (size_t h = 0; h < n; ++h) {
+      if (results.runs[h][m].score.selected.rfind("plane", 0) == 0) {
+        s.chosen_holes.push_back(static_cast<int>(h));
+      }
+    }
+    if (s.chosen_holes.empty()) continue;
+    for (size_t other = 0; other < methods; ++other) {
+      std::vector<double> hausdorff;
+      for (int h : s.chosen_holes) {
+        const double value = hausdorff_in_dm(results, h, other);
+        if (!std::isnan(value)) hausdorff.push_back(value);
+      }
+      s.hausdorff_median_where_chosen.push_back(hausdorff.empty() ? kNan : median(hausdorff));
+    }
+  }
   const std::vector<double> best_errors = hausdorff_or_failure(results, summary.best);
   for (size_t m = 0; m < methods; ++m) {
     summary.methods[m].versus_best =
@@ -629,6 +661,9 @@ nlohmann::json summary_json(const BenchResults& results, const BenchSummary& sum
         {"pearson_hausdorff_area", s.pearson},
         {"pearson_holes", s.pearson_holes},
         {"seconds_per_hole_median", s.seconds_median},
+        {"image_pipeline_chosen",
+         {{"holes", s.chosen_holes},
+          {"hausdorff_median_by_method", s.hausdorff_median_where_chosen}}},
         {"rank_shares", summary.overall.shares[m]},
         {"hausdorff_median_ci95", interval_json(s.hausdorff_median_interval)},
         {"rank_shares_ci95", rank_share_intervals_json(summary, m)},

@@ -62,6 +62,8 @@ struct MethodSummary {
   MeanSd edge_ratio;   // Table 8, over the filled holes
   double pearson = 0;  // Table 4: of H / d_m with area / d_m², over the filled holes (NaN: none)
   int pearson_holes = 0;
+  std::vector<int> chosen_holes;  // where the band test chose this method's image pipeline
+  std::vector<double> hausdorff_median_where_chosen;  // each method's on chosen_holes, / d_m
 };
 
 struct BenchSummary {

@@ -44,6 +44,19 @@ std::vector<Strategy> strategies_from_arguments(const std::string& filler,
   }
 }
 
+std::vector<Candidate> candidates_from_arguments(const CLI::App& command,
+                                                 const std::string& select) {
+  if (command.count("--select") == 0 &&
+      (command.count("--filler") || command.count("--fallback"))) {
+    return {};
+  }
+  try {
+    return parse_candidates(select);
+  } catch (const InvalidInput& error) {
+    throw UsageError(std::string("--select: ") + error.what());
+  }
+}
+
 std::vector<std::string> split_list(const std::string& text) {
   std::vector<std::string> items;
   std::stringstream stream(text);

@@ -82,6 +82,12 @@ void add_patch_options(CLI::App* command, HoleSampleOptions& samples);
 std::vector<Strategy> strategies_from_arguments(const std::string& filler,
                                                 const std::string& fallback);
 
+/// RepairOptions::selection's candidates from --select (parse_candidates): none when --filler or
+/// --fallback is given without --select, so that the chain named fills every hole. Throws
+/// UsageError on an unknown name.
+std::vector<Candidate> candidates_from_arguments(const CLI::App& command,
+                                                 const std::string& select);
+
 /// SIGINT, SIGTERM and SIGHUP no longer kill the process where it stands: a thread of their own
 /// takes them and exits with 128 + the signal's number, but never while an OutputGuard is held, so
 /// that every output is complete or absent and no temporary file is left behind. Call first in

@@ -167,7 +167,6 @@ void check_arguments(RepairCommand& command) {
   command.options.trend = trend_from_name(command.trend);
   if (command.fill_all) command.options.border_share = 0;
   command.options.strategies = strategies_from_arguments(command.filler, command.fallback);
-  command.options.selection.candidates = parse_candidates(command.select);
 }
 
 // The input mesh; a point cloud meshed first (unless --mesher none, which refuses it).
@@ -371,7 +370,7 @@ void add_repair_command(CLI::App& app, Runner& runner) {
                   "Candidates scored on each hole by a band test (a band of known faces hidden "
                   "round the hole, the enlarged hole filled by each, the fill nearest the band "
                   "wins), tried before the filler: fairing[:c0|:c1|:c2], plane[:BACKEND], front; "
-                  "or none")
+                  "or none (the default when --filler or --fallback is given without --select)")
       ->capture_default_str();
   sub->add_option("--select-band", options.selection.band_rings,
                   "Rings of known faces the band test hides round a hole")
@@ -438,7 +437,10 @@ void add_repair_command(CLI::App& app, Runner& runner) {
   sub->add_flag("--ascii", command->ascii, "Write ASCII instead of binary (PLY, STL)");
   sub->add_flag("--in-place", command->in_place, "Allow OUT to be the input file");
   sub->add_flag("--json", command->json, "Print the report as JSON instead of a table");
-  sub->callback([command, &runner] { runner = [command] { return run_repair(*command); }; });
+  sub->callback([command, sub, &runner] {
+    command->options.selection.candidates = candidates_from_arguments(*sub, command->select);
+    runner = [command] { return run_repair(*command); };
+  });
 }
 
 }  // namespace rangefill::cli

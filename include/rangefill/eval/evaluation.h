@@ -27,7 +27,8 @@ struct HoleScore {
   int new_vertices = 0;
   int new_faces = 0;
   double seconds = 0;
-  std::string method;  // of the pass-0 fill (HoleReport::method)
+  std::string method;    // of the pass-0 fill (HoleReport::method)
+  std::string selected;  // the candidate whose band test won (HoleReport::selected), if any
   int zone_faces = 0;
   HoleReport::Stages stages;
 };

@@ -27,7 +27,8 @@ struct RepairOptions : FillOptions {
   double border_share = kBorderShare;
   int max_hole_edges = 0;      // loops with more boundary edges are left open; 0 = no limit
   double max_hole_area = 0;    // loops with a larger area are left open; 0 = no limit
-  SelectionOptions selection;  // each hole's filler chosen by a band test (selection.h)
+  SelectionOptions selection;  // each hole's filler chosen by a band test (selection.h), tried
+                               // before `strategies`; no candidates: the chain alone
   int passes = 8;  // rounds of detect–fill–merge (Section IX); complex holes take one per part
   int threads = hardware_threads();  // holes of a pass filled at once; the result does not
                                      // depend on it
