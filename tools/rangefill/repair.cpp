@@ -96,6 +96,21 @@ nlohmann::json report_json(const RepairCommand& command, const RepairResult& res
   return report;
 }
 
+// "filled: fairing", or with a band test "filled: fairing:c1 (band test, RMS / d_m: fairing 0.31,
+// fairing:c1 0.22, plane:telea refused)"; the failure when not filled.
+std::string result_text(const HoleReport& hole) {
+  if (!hole.filled) return hole.failure;
+  if (hole.selected.empty()) return "filled: " + hole.method;
+  std::string text = "filled: " + hole.selected + " (band test, RMS / d_m:";
+  for (size_t i = 0; i < hole.selection.size(); ++i) {
+    const CandidateScore& score = hole.selection[i];
+    char value[32] = "refused";
+    if (score.score) std::snprintf(value, sizeof value, "%.2f", *score.score);
+    text += (i ? ", " : " ") + score.candidate + " " + value;
+  }
+  return text + ")";
+}
+
 void print_summary(const RepairResult& result) {
   std::printf("%5s %4s %9s %4s %11s %7s %8s %8s  %s\n", "hole", "pass", "boundary", "nu", "image",
               "masked", "new v", "seconds", "result");
@@ -104,8 +119,7 @@ void print_summary(const RepairResult& result) {
         std::to_string(hole.image_size.width) + "x" + std::to_string(hole.image_size.height);
     std::printf("%5d %4d %9d %4d %11s %7d %8d %8.3f  %s\n", hole.id, hole.pass,
                 hole.boundary_vertices, hole.rings, size.c_str(), hole.masked_pixels,
-                hole.new_vertices, hole.seconds,
-                hole.filled ? ("filled: " + hole.method).c_str() : hole.failure.c_str());
+                hole.new_vertices, hole.seconds, result_text(hole).c_str());
   }
 }
 
