@@ -74,25 +74,26 @@ std::optional<BandTest> hide_band(const SurfaceContext& surface, const BoundaryL
   if (kept.empty()) return std::nullopt;
 
   BandTest test;
-  std::vector<int> local(mesh.vertex_count(), -1);
   std::vector<int> used;
   for (int face : kept)
     used.insert(used.end(), mesh.triangles[face].begin(), mesh.triangles[face].end());
   std::sort(used.begin(), used.end());
   used.erase(std::unique(used.begin(), used.end()), used.end());
-  for (int v : used) {
-    local[v] = test.mesh.vertex_count();
-    add_vertex(test.mesh, mesh.positions[v], kOriginal);
-  }
+  for (int v : used) add_vertex(test.mesh, mesh.positions[v], kOriginal);
+  // A kept vertex's number in test.mesh is its place in `used` (ascending); -1 if not kept.
+  const auto local = [&](int v) {
+    const auto found = std::lower_bound(used.begin(), used.end(), v);
+    return found != used.end() && *found == v ? static_cast<int>(found - used.begin()) : -1;
+  };
   for (int face : kept) {
     const Triangle& t = mesh.triangles[face];
-    add_face(test.mesh, {local[t[0]], local[t[1]], local[t[2]]}, kOriginal);
+    add_face(test.mesh, {local(t[0]), local(t[1]), local(t[2])}, kOriginal);
   }
   std::set<int> band_vertices;
   for (int face : band)
     band_vertices.insert(mesh.triangles[face].begin(), mesh.triangles[face].end());
   for (int v : band_vertices) {
-    if (local[v] < 0) test.hidden.push_back(mesh.positions[v]);
+    if (local(v) < 0) test.hidden.push_back(mesh.positions[v]);
   }
   if (test.hidden.empty()) return std::nullopt;
 
@@ -196,8 +197,7 @@ std::optional<Fill> fill_by_selection(const SurfaceContext& surface, const Bound
   std::iota(order.begin(), order.end(), 0);
   for (size_t i = 0; i < fillers.candidates.size(); ++i) {
     const Candidate& candidate = fillers.candidates[i];
-    const Inpainter& candidate_inpainter =
-        fillers.inpainters[i] ? *fillers.inpainters[i] : inpainter;
+    const Inpainter& candidate_inpainter = fillers.inpainter_of(i, inpainter);
     const auto start = std::chrono::steady_clock::now();
     HoleReport scratch;
     FillOptions on_band = candidate_options(options, candidate);
@@ -217,13 +217,11 @@ std::optional<Fill> fill_by_selection(const SurfaceContext& surface, const Bound
   std::vector<Attempt> attempts;
   for (size_t i : order) {
     const Candidate& candidate = fillers.candidates[i];
-    const Inpainter& candidate_inpainter =
-        fillers.inpainters[i] ? *fillers.inpainters[i] : inpainter;
     HoleReport tried = report;
     tried.attempts = attempts;
     std::optional<Fill> fill =
-        fill_by_chain(surface, hole, candidate_inpainter, candidate_options(options, candidate),
-                      last_pass, tried);
+        fill_by_chain(surface, hole, fillers.inpainter_of(i, inpainter),
+                      candidate_options(options, candidate), last_pass, tried);
     attempts = tried.attempts;
     if (fill) {
       report = std::move(tried);

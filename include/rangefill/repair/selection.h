@@ -60,7 +60,12 @@ struct CandidateFillers {
   CandidateFillers(const std::vector<Candidate>& candidates, const std::string& default_inpainter,
                    const InpainterOptions& inpainting);
   std::vector<Candidate> candidates;
-  std::vector<std::unique_ptr<Inpainter>> inpainters;  // one per candidate
+  std::vector<std::unique_ptr<Inpainter>> inpainters;  // one per candidate: plane's, else null
+
+  /// The inpainter candidate `i` fills with: its own, else `fallback` (the repair's).
+  const Inpainter& inpainter_of(size_t i, const Inpainter& fallback) const {
+    return inpainters[i] ? *inpainters[i] : fallback;
+  }
 };
 
 /// Fills `hole` as fill_by_chain does, the chain preceded by the candidates in the order of their
