@@ -66,8 +66,8 @@ SurfaceDistance surface_distance(const Mesh& first, const std::vector<int>& firs
   distance.from_first = from_first;
   distance.from_second = from_second;
   distance.hausdorff = std::max(from_first, from_second);
-  distance.mean =
-      (first_sum + second_sum) / static_cast<double>(first_samples.size() + second_samples.size());
+  distance.mean = 0.5 * (first_sum / static_cast<double>(first_samples.size()) +
+                         second_sum / static_cast<double>(second_samples.size()));
   return distance;
 }
 

@@ -366,4 +366,12 @@ std::string curvature_name(CurvatureClass curvature) {
   return "high";
 }
 
+CurvatureClass curvature_from_name(const std::string& name) {
+  for (CurvatureClass c : {CurvatureClass::low, CurvatureClass::medium, CurvatureClass::high}) {
+    if (curvature_name(c) == name) return c;
+  }
+  throw InvalidInput("punch: unknown curvature class '" + name +
+                     "' (expected low, medium or high)");
+}
+
 }  // namespace rangefill

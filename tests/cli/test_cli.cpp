@@ -19,6 +19,7 @@
 
 #include "rangefill/depth/fill_depth.h"
 #include "rangefill/eval/metrics.h"
+#include "rangefill/eval/punch.h"
 #include "rangefill/io/depth_io.h"
 #include "rangefill/io/mesh_io.h"
 #include "rangefill/repair/holes.h"
@@ -677,6 +678,78 @@ TEST(Cli, BenchShardsMergeIntoTheUnshardedRun) {
   EXPECT_NE(mixed.err.find("from another bench run"), std::string::npos) << mixed.err;
   EXPECT_EQ(run(common + " --shard 2/2 --out " + (dir / "bad").string()).exit_code, 2);
   EXPECT_EQ(run(common + " --shard 0/2").exit_code, 2);  // no --out
+  fs::remove_all(dir);
+}
+
+// Writes the holes `punched` of `original` into `dir` as the mesh kit's punch does: holed.ply,
+// gt_hole_<id>.ply (the removed faces of hole id) and holes.json with d_m `mean_edge`.
+void write_kit_punch(const Mesh& original, const PunchResult& punched, double mean_edge,
+                     const fs::path& dir) {
+  fs::create_directories(dir);
+  write_mesh(punched.mesh, dir / "holed.ply");
+  nlohmann::json holes = nlohmann::json::array();
+  for (size_t h = 0; h < punched.holes.size(); ++h) {
+    const PunchedHole& hole = punched.holes[h];
+    write_mesh(extract_faces(original, hole.removed_faces),
+               dir / ("gt_hole_" + std::to_string(h) + ".ply"));
+    holes.push_back({{"id", h},
+                     {"elongated", hole.shape == HoleShape::elongated},
+                     {"radius", hole.radius},
+                     {"curvature", hole.bending},
+                     {"curvature_class", curvature_name(hole.curvature)},
+                     {"on_feature", hole.sharp_feature}});
+  }
+  write_bytes(
+      dir / "holes.json",
+      nlohmann::json{{"d_m", mean_edge}, {"holed_mesh", "holed.ply"}, {"holes", holes}}.dump());
+}
+
+// `rangefill bench --punched DIR` scores the holes another tool punched (the mesh kit's layout):
+// written from the very holes `bench --meshes` punches, they get the same distances, hole for hole
+// and method for method; a holes.json that is not the kit's is refused, naming it.
+TEST(Cli, BenchScoresTheHolesOfTheMeshKitsPunch) {
+  const fs::path dir = testing::temporary_directory("cli-bench-punched");
+  const std::string common = sphere_bench(dir, "cgal-fair");
+  const std::string methods = common.substr(common.find(" --inpainters"));
+  const Mesh sphere = read_mesh(dir / "sphere.ply").mesh;
+  PunchOptions options;  // as sphere_bench punches it
+  options.holes = 3;
+  options.seed = seed_for_mesh(4, "sphere.ply");
+  options.max_radius = 6;
+  options.spread = true;
+  options.shapes = {HoleShape::disk, HoleShape::elongated};
+  const PunchResult punched = punch_holes(sphere, options);
+  ASSERT_EQ(punched.holes.size(), 3u);
+  write_kit_punch(sphere, punched, mean_edge_length(sphere), dir / "kit" / "case" / "punch");
+
+  ASSERT_EQ(run(common + " --csv " + (dir / "own.csv").string()).exit_code, 0);
+  const Outcome kit = run("bench --punched " + (dir / "kit").string() + methods + " --csv " +
+                          (dir / "kit.csv").string());
+  ASSERT_EQ(kit.exit_code, 0) << kit.err;
+  EXPECT_NE(kit.out.find("1 meshes, 3 holes (punched by the mesh kit)"), std::string::npos)
+      << kit.out;
+  const auto own_rows = csv_without_times(slurp(dir / "own.csv"));
+  const auto kit_rows = csv_without_times(slurp(dir / "kit.csv"));
+  ASSERT_EQ(kit_rows.size(), 1u + 3 * 3);
+  ASSERT_EQ(kit_rows.size(), own_rows.size());
+  const std::vector<std::string>& header = own_rows[0];
+  for (const std::string column :
+       {"method", "hole", "filled", "hausdorff_dm", "mean_distance_dm", "new_faces", "curvature"}) {
+    const size_t k = std::find(header.begin(), header.end(), column) - header.begin();
+    ASSERT_LT(k, header.size()) << column;
+    for (size_t row = 1; row < own_rows.size(); ++row) {
+      EXPECT_EQ(kit_rows[row][k], own_rows[row][k]) << column << ", row " << row;
+    }
+  }
+  EXPECT_EQ(kit_rows[1][0], "case");  // named by the directory above punch/
+
+  write_bytes(dir / "kit" / "case" / "punch" / "holes.json", "{\"holes\": []}");
+  const Outcome bad = run("bench --punched " + (dir / "kit").string() + methods);
+  EXPECT_EQ(bad.exit_code, 3);
+  EXPECT_NE(bad.err.find("holes.json: not a holes.json of the mesh kit's punch"), std::string::npos)
+      << bad.err;
+  EXPECT_EQ(run("bench --punched " + (dir / "sphere.ply").string() + methods).exit_code, 2);
+  EXPECT_EQ(run(common + " --punched " + (dir / "kit").string()).exit_code, 2);
   fs::remove_all(dir);
 }
 

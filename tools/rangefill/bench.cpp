@@ -9,6 +9,7 @@
 #include "bench_report.h"
 #include "cli.h"
 #include "isolation.h"
+#include "kit_punch.h"
 #include "rangefill/core/errors.h"
 #include "rangefill/eval/evaluation.h"
 #include "rangefill/eval/metrics.h"
@@ -24,6 +25,7 @@ using nlohmann::json;
 
 struct BenchCommand {
   std::vector<std::string> meshes;
+  std::vector<std::string> punched;  // the mesh kit's punch directories, instead of meshes
   std::string inpainters, baselines, trends = "auto", csv, save, out,
                                      filler = filler_name(kDefaultFiller);
   std::string fallback = kDefaultFallbacks, shapes = "disk,elongated", shard;
@@ -224,9 +226,14 @@ void write_output(const std::string& bytes, const fs::path& path,
 
 void print_summary(const BenchResults& results, const BenchSummary& summary,
                    const BenchCommand& command) {
-  std::printf("%d meshes, %zu holes (%d asked per mesh, seed %llu)\n", summary.meshes,
-              results.holes.size(), command.punch.holes,
-              static_cast<unsigned long long>(command.punch.seed));
+  if (command.punched.empty()) {
+    std::printf("%d meshes, %zu holes (%d asked per mesh, seed %llu)\n", summary.meshes,
+                results.holes.size(), command.punch.holes,
+                static_cast<unsigned long long>(command.punch.seed));
+  } else {
+    std::printf("%d meshes, %zu holes (punched by the mesh kit)\n", summary.meshes,
+                results.holes.size());
+  }
   std::printf("%-18s %7s %7s %8s %8s %8s %13s %6s %6s %8s\n", "method", "filled", "closed",
               "H med/dm", "H max/dm", "mean/dm", "edge r", "PCC", "self-x", "s/hole");
   for (size_t m = 0; m < results.methods.size(); ++m) {
@@ -237,7 +244,7 @@ void print_summary(const BenchResults& results, const BenchSummary& summary,
     if (!std::isnan(s.pearson)) std::snprintf(pcc, sizeof pcc, "%.2f", s.pearson);
     std::printf("%-18s %3d/%-3zu %3d/%-3d %8.3f %8.3f %8.3f %13s %6s %6d %8.4f\n",
                 results.methods[m].c_str(), s.filled, results.holes.size(), s.closed_meshes,
-                summary.meshes, s.hausdorff_median, s.hausdorff_max, s.mean_distance_median, edge,
+                summary.meshes, s.hausdorff_median, s.hausdorff_max, s.mean_distance_mean, edge,
                 pcc, s.self_intersections, s.seconds_median);
   }
   bool header = false;
@@ -347,8 +354,20 @@ HoleView hole_view(const Punched& mesh, int h) {
   return view;
 }
 
-// Each mesh punched with its own seed; its holes appended to `results`, and for each benchmark
-// hole its mesh and its index there to `hole_of`.
+// Appends `mesh` to `meshes`, its holes to `results`, and for each of them its mesh and its
+// index there to `hole_of`.
+void add_punched(Punched mesh, std::vector<Punched>& meshes, BenchResults& results,
+                 std::vector<std::pair<int, int>>& hole_of) {
+  for (size_t h = 0; h < mesh.punched.holes.size(); ++h) {
+    BenchHole hole{mesh.name, static_cast<int>(h), mesh.mean_edge, mesh.punched.holes[h]};
+    hole.hole.removed_faces.clear();
+    results.holes.push_back(std::move(hole));
+    hole_of.emplace_back(static_cast<int>(meshes.size()), static_cast<int>(h));
+  }
+  meshes.push_back(std::move(mesh));
+}
+
+// Each mesh punched with its own seed (add_punched).
 std::vector<Punched> punch_meshes(const BenchCommand& command, const std::vector<fs::path>& files,
                                   BenchResults& results,
                                   std::vector<std::pair<int, int>>& hole_of) {
@@ -372,13 +391,28 @@ std::vector<Punched> punch_meshes(const BenchCommand& command, const std::vector
     options.seed = seed_for_mesh(command.punch.seed, mesh.name);
     mesh.punched = punch_holes(mesh.original, options);
     mesh.loops = punched_loops(mesh.original, mesh.punched);
-    for (size_t h = 0; h < mesh.punched.holes.size(); ++h) {
-      BenchHole hole{mesh.name, static_cast<int>(h), mesh.mean_edge, mesh.punched.holes[h]};
-      hole.hole.removed_faces.clear();
-      results.holes.push_back(std::move(hole));
-      hole_of.emplace_back(static_cast<int>(meshes.size()), static_cast<int>(h));
-    }
-    meshes.push_back(std::move(mesh));
+    add_punched(std::move(mesh), meshes, results, hole_of);
+  }
+  return meshes;
+}
+
+// --punched: the holes of the mesh kit's punch directories `dirs` (add_punched), each named by
+// its directory, or by the directory above for one called "punch" (the kit's run_peers.sh
+// layout: CASE/punch).
+std::vector<Punched> read_punched(const std::vector<fs::path>& dirs, BenchResults& results,
+                                  std::vector<std::pair<int, int>>& hole_of) {
+  std::vector<Punched> meshes;
+  for (const fs::path& dir : dirs) {
+    KitPunch kit = read_kit_punch(dir);
+    Punched mesh;
+    const fs::path named = dir.filename() == "punch" ? dir.parent_path() : dir;
+    mesh.name = named.filename().string();
+    mesh.original = std::move(kit.original);
+    check_closed(mesh.original, (dir / "holed.ply").string() + " with its holes' faces");
+    mesh.punched = std::move(kit.punched);
+    mesh.mean_edge = kit.mean_edge;
+    mesh.loops = punched_loops(mesh.original, mesh.punched);
+    add_punched(std::move(mesh), meshes, results, hole_of);
   }
   return meshes;
 }
@@ -452,10 +486,9 @@ int report_runs(const BenchCommand& command, const BenchResults& results,
 constexpr const char* kShardFormat = "rangefill bench shard 1";
 
 // What decides the jobs and their scores: the shards of one run agree on it.
-json bench_configuration(const BenchCommand& command, const std::vector<fs::path>& files) {
-  json meshes = json::array();
-  for (const fs::path& file : files) meshes.push_back(file.filename().string());
-  return {{"meshes", meshes},
+json bench_configuration(const BenchCommand& command, const std::vector<std::string>& names) {
+  return {{"meshes", names},
+          {"punched", !command.punched.empty()},
           {"holes_per_mesh", command.punch.holes},
           {"seed", command.punch.seed},
           {"min_radius", command.punch.min_radius},
@@ -497,9 +530,7 @@ BenchHole hole_from_json(const json& j) {
   h.length = j.at("length");
   h.area = j.at("area");
   h.bending = j.at("bending");
-  for (CurvatureClass c : {CurvatureClass::low, CurvatureClass::medium, CurvatureClass::high}) {
-    if (curvature_name(c) == j.at("curvature")) h.curvature = c;
-  }
+  h.curvature = curvature_from_name(j.at("curvature"));
   h.sharp_feature = j.at("sharp_feature");
   return hole;
 }
@@ -509,8 +540,9 @@ std::string shard_file_name(std::pair<int, int> shard) {
 }
 
 void write_shard(const BenchCommand& command, const BenchResults& results,
-                 const std::vector<fs::path>& files, std::pair<int, int> shard,
-                 const std::vector<int>& jobs, const std::vector<ChildResult>& children) {
+                 const std::vector<std::string>& names, const std::vector<fs::path>& files,
+                 std::pair<int, int> shard, const std::vector<int>& jobs,
+                 const std::vector<ChildResult>& children) {
   json holes = json::array(), views = json::array(), runs = json::object();
   for (const BenchHole& hole : results.holes) holes.push_back(hole_json(hole));
   for (const HoleView& view : results.views) {
@@ -520,7 +552,7 @@ void write_shard(const BenchCommand& command, const BenchResults& results,
   const json document = {{"format", kShardFormat},
                          {"shard", {shard.first, shard.second}},
                          {"command", command_line()},
-                         {"configuration", bench_configuration(command, files)},
+                         {"configuration", bench_configuration(command, names)},
                          {"methods", results.methods},
                          {"backends", results.backends},
                          {"holes", holes},
@@ -595,6 +627,9 @@ int merge_shards(const BenchCommand& command) {
   const json& configuration = first.at("configuration");
   merged.punch.holes = configuration.at("holes_per_mesh");
   merged.punch.seed = configuration.at("seed");
+  if (configuration.value("punched", false)) {  // the summary names where the holes came from
+    merged.punched = configuration.at("meshes").get<std::vector<std::string>>();
+  }
   merged.area_classes = configuration.at("area_classes");
   merged.tie = configuration.at("tie");
   BenchResults results;
@@ -619,8 +654,10 @@ int merge_shards(const BenchCommand& command) {
 
 // The arguments that do not go together, before any work.
 void check_bench_arguments(const BenchCommand& command) {
-  if (command.merge.empty() == command.meshes.empty()) {
-    throw UsageError("give --meshes (to run the jobs) or --merge DIR... (to report on shards)");
+  if (!command.merge.empty() + !command.meshes.empty() + !command.punched.empty() != 1) {
+    throw UsageError(
+        "give --meshes (to punch them and run the jobs), --punched DIR... (to run them on holes "
+        "the mesh kit punched) or --merge DIR... (to report on shards)");
   }
   if (!command.merge.empty() && command.out.empty()) throw UsageError("--merge needs --out DIR");
   if (!command.merge.empty() && (!command.save.empty() || !command.shard.empty())) {
@@ -640,13 +677,23 @@ int run_bench(const BenchCommand& command) {
   check_bench_arguments(command);
   if (!command.merge.empty()) return merge_shards(command);
   const std::vector<BenchmarkMethod> methods = bench_methods(command);
-  const std::vector<fs::path> files = mesh_files(command.meshes);
-  if (files.empty()) throw UsageError("--meshes: no mesh files found");
   BenchResults results;
   for (const BenchmarkMethod& method : methods) results.methods.push_back(method.name);
   results.backends = backend_count(command);
   std::vector<std::pair<int, int>> hole_of;  // per benchmark hole: mesh, hole in it
-  const std::vector<Punched> meshes = punch_meshes(command, files, results, hole_of);
+  std::vector<fs::path> files;               // what the outputs must not overwrite
+  std::vector<Punched> meshes;
+  if (command.punched.empty()) {
+    files = mesh_files(command.meshes);
+    if (files.empty()) throw UsageError("--meshes: no mesh files found");
+    meshes = punch_meshes(command, files, results, hole_of);
+  } else {
+    const std::vector<fs::path> dirs = kit_punch_dirs(command.punched);
+    for (const fs::path& dir : dirs) files.push_back(dir / "holed.ply");
+    meshes = read_punched(dirs, results, hole_of);
+  }
+  std::vector<std::string> names;
+  for (const Punched& mesh : meshes) names.push_back(mesh.name);
 
   // One child process per hole and method, in that order (this shard's share of them).
   const int method_count = static_cast<int>(methods.size());
@@ -679,7 +726,7 @@ int run_bench(const BenchCommand& command) {
       });
   if (progress) std::fprintf(stderr, "\r\033[K");
   if (!command.shard.empty()) {
-    write_shard(command, results, files, shard, jobs, children);
+    write_shard(command, results, names, files, shard, jobs, children);
     return kOk;
   }
 
@@ -705,6 +752,10 @@ void add_bench_command(CLI::App& app, Runner& runner) {
       "Punch holes into closed meshes, fill them with each back-end and baseline, and "
       "measure (Perez et al., Section X)");
   sub->add_option("--meshes", command->meshes, "Closed meshes, or directories of them");
+  sub->add_option("--punched", command->punched,
+                  "Instead of --meshes: holes punched by the mesh evaluation kit's punch (its "
+                  "output directories, or directories above them: holed.ply, gt_hole_<id>.ply, "
+                  "holes.json), scored in the kit's d_m and curvature classes");
   sub->add_option("--holes-per-mesh", command->punch.holes, "Holes punched per mesh")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));

@@ -17,7 +17,7 @@ struct SurfaceDistance {
   double hausdorff = 0;    // max of the two one-sided distances
   double from_first = 0;   // max over points of the first set of the distance to the second
   double from_second = 0;  // max over points of the second set of the distance to the first
-  double mean = 0;         // mean over the samples of both sets of the distance to the other
+  double mean = 0;         // the two one-sided mean distances (over each set's samples), averaged
 };
 
 /// Samples both sets (vertices and a barycentric grid no coarser than `spacing` on every triangle)

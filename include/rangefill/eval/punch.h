@@ -83,6 +83,8 @@ std::string shape_name(HoleShape shape);
 HoleShape shape_from_name(const std::string& name);
 /// "low", "medium", "high".
 std::string curvature_name(CurvatureClass curvature);
+/// The class called `name`; throws InvalidInput otherwise.
+CurvatureClass curvature_from_name(const std::string& name);
 
 /// The seed `rangefill bench` punches a mesh named `name` with: `seed` mixed with an FNV-1a hash of
 /// the name, so each mesh gets its own holes and adding a mesh changes no other mesh's.
