@@ -67,6 +67,7 @@ std::vector<HoleScore> score_repair(const Mesh& original, const PunchResult& pun
     score.distance = surface_distance(repaired.mesh, patch, original,
                                       punched.holes[h].removed_faces, mean_edge / 4);
     score.edge_ratio = mean_edge_length(repaired.mesh, patch) / mean_edge;
+    score.smallest_angle = smallest_angle_degrees(repaired.mesh, patch);
   }
   // A hole partly filled (Section VI-C) whose rest stayed open is not filled.
   for (const BoundaryLoop& loop : find_holes(repaired.mesh, build_topology(repaired.mesh)).loops) {

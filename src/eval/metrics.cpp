@@ -104,6 +104,19 @@ double mean_edge_length(const Mesh& mesh, const std::vector<int>& faces) {
   return edges.empty() ? 0.0 : sum / static_cast<double>(edges.size());
 }
 
+double smallest_angle_degrees(const Mesh& mesh, const std::vector<int>& faces) {
+  double smallest = M_PI;
+  for (int face : faces) {
+    const Triangle& t = mesh.triangles[face];
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& p = mesh.positions[t[k]];
+      const Vec3 u = mesh.positions[t[(k + 1) % 3]] - p, v = mesh.positions[t[(k + 2) % 3]] - p;
+      smallest = std::min(smallest, std::atan2(u.cross(v).norm(), u.dot(v)));
+    }
+  }
+  return smallest * 180 / M_PI;
+}
+
 std::vector<int> faces_of_hole(const Mesh& mesh, int hole) {
   std::vector<int> faces;
   for (int f = 0; f < mesh.face_count(); ++f) {

@@ -219,8 +219,9 @@ cv::Mat inpaint_colors(const RangeImage& image, const cv::Mat& mask, const Inpai
 // without cutting the surface or itself.
 FillOutcome checked(const SurfaceContext& surface, FillOutcome outcome) {
   if (!std::holds_alternative<Fill>(outcome)) return outcome;
-  Fill fill =
-      with_larger_angles(surface.mesh, surface.topology, std::get<Fill>(std::move(outcome)));
+  Fill fill = std::get<Fill>(std::move(outcome));
+  if (surface.larger_angles)
+    fill = with_larger_angles(surface.mesh, surface.topology, std::move(fill));
   if (const auto defect = fill_defect(surface.mesh, surface.topology, fill)) {
     return Refused{Refusal::not_manifold, *defect};
   }

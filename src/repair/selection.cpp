@@ -192,7 +192,8 @@ std::optional<Fill> fill_by_selection(const SurfaceContext& surface, const Bound
   }
   if (!test) return fill_by_chain(surface, hole, inpainter, options, last_pass, report);
 
-  const SurfaceContext band_surface(test->mesh, surface.mean_edge);
+  SurfaceContext band_surface(test->mesh, surface.mean_edge);
+  band_surface.larger_angles = false;  // a fill's shape, not its triangles' angles, is scored
   std::vector<size_t> order(fillers.candidates.size());
   std::iota(order.begin(), order.end(), 0);
   for (size_t i = 0; i < fillers.candidates.size(); ++i) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "rangefill/core/errors.h"
+#include "rangefill/repair/fairing.h"
 #include "support.h"
 
 namespace rangefill {
@@ -83,6 +84,30 @@ TEST(FillByChain, TakesTheFirstStrategyThatFillsAndRecordsTheRefusals) {
   }
   EXPECT_EQ(refused.failure.rfind("hole " + std::to_string(outer.id) + ": plane: ", 0), 0u)
       << refused.failure;
+}
+
+// A surface that does not ask for larger angles gets each filler's fill as it is (the band test
+// scores those); by default the angle pass reshapes it.
+TEST(FillByChain, GivesLargerAnglesUnlessTheSurfaceSaysNot) {
+  const Mesh sheet = testing::remove_faces(
+      testing::make_grid(20), [](const Vec3& p) { return (p - Vec3(10, 10.3, 0)).norm() < 4.6; });
+  SurfaceContext surface(sheet, 0);
+  const BoundaryLoop hole = testing::inner_loop(sheet);
+  const std::unique_ptr<Inpainter> inpainter = make_inpainter("harmonic");
+  FillOptions options;
+  options.strategies = {Strategy::fairing};
+  const Fill raw = std::get<Fill>(
+      fill_by_fairing(sheet, surface.topology, hole, surface.mean_edge, options.fairing));
+  HoleReport report;
+  const std::optional<Fill> angled =
+      fill_by_chain(surface, hole, *inpainter, options, false, report);
+  surface.larger_angles = false;
+  const std::optional<Fill> as_made =
+      fill_by_chain(surface, hole, *inpainter, options, false, report);
+  ASSERT_TRUE(angled && as_made);
+  EXPECT_EQ(as_made->points, raw.points);
+  EXPECT_EQ(as_made->triangles, raw.triangles);
+  EXPECT_TRUE(angled->points != raw.points || angled->triangles != raw.triangles);
 }
 
 // Every refusal has words.

@@ -69,6 +69,7 @@ json score_json(const HoleScore& s) {
           {"distance",
            {s.distance.hausdorff, s.distance.from_first, s.distance.from_second, s.distance.mean}},
           {"edge_ratio", s.edge_ratio},
+          {"smallest_angle", s.smallest_angle},
           {"new_vertices", s.new_vertices},
           {"new_faces", s.new_faces},
           {"seconds", s.seconds},
@@ -87,6 +88,7 @@ HoleScore score_from_json(const json& j) {
   const json& d = j.at("distance");
   s.distance = {d[0], d[1], d[2], d[3]};
   s.edge_ratio = j.at("edge_ratio");
+  s.smallest_angle = j.at("smallest_angle");
   s.new_vertices = j.at("new_vertices");
   s.new_faces = j.at("new_faces");
   s.seconds = j.at("seconds");
@@ -185,7 +187,7 @@ std::string csv_table(const BenchResults& results) {
          "edge_ratio,new_vertices,new_faces,seconds,filler,zone_faces,zone_s,planes_s,image_s,"
          "inpainting_s,stitching_s,checking_s,front_s,failure,shape,radius_dm,length_dm,area_dm2,"
          "bending,curvature,sharp_feature,hausdorff_dm,from_patch_dm,from_truth_dm,"
-         "mean_distance_dm,self_intersections,manifold,wall_s,selected\n";
+         "mean_distance_dm,self_intersections,manifold,wall_s,selected,smallest_angle_deg\n";
   for (size_t h = 0; h < results.holes.size(); ++h) {
     const BenchHole& hole = results.holes[h];
     const double d_m = hole.mean_edge;
@@ -205,7 +207,7 @@ std::string csv_table(const BenchResults& results) {
           << curvature_name(hole.hole.curvature) << ',' << hole.hole.sharp_feature << ','
           << d.hausdorff / d_m << ',' << d.from_first / d_m << ',' << d.from_second / d_m << ','
           << d.mean / d_m << ',' << run.self_intersections << ',' << run.manifold << ','
-          << run.wall_seconds << ',' << csv_text(s.selected) << '\n';
+          << run.wall_seconds << ',' << csv_text(s.selected) << ',' << s.smallest_angle << '\n';
     }
   }
   return csv.str();
@@ -234,18 +236,22 @@ void print_summary(const BenchResults& results, const BenchSummary& summary,
     std::printf("%d meshes, %zu holes (punched by the mesh kit)\n", summary.meshes,
                 results.holes.size());
   }
-  std::printf("%-18s %7s %7s %8s %8s %8s %13s %6s %6s %8s\n", "method", "filled", "closed",
-              "H med/dm", "H max/dm", "mean/dm", "edge r", "PCC", "self-x", "s/hole");
+  std::printf("%-18s %7s %7s %8s %17s %8s %8s %13s %9s %6s %6s %8s\n", "method", "filled", "closed",
+              "H med/dm", "low/medium/high", "H max/dm", "mean/dm", "edge r", "min angle", "PCC",
+              "self-x", "s/hole");
   for (size_t m = 0; m < results.methods.size(); ++m) {
     const MethodSummary& s = summary.methods[m];
     char edge[32];
     std::snprintf(edge, sizeof edge, "%.2f ± %.2f", s.edge_ratio.mean, s.edge_ratio.sd);
     char pcc[16] = "—";  // fewer than two holes, or H or the area constant
     if (!std::isnan(s.pearson)) std::snprintf(pcc, sizeof pcc, "%.2f", s.pearson);
-    std::printf("%-18s %3d/%-3zu %3d/%-3d %8.3f %8.3f %8.3f %13s %6s %6d %8.4f\n",
-                results.methods[m].c_str(), s.filled, results.holes.size(), s.closed_meshes,
-                summary.meshes, s.hausdorff_median, s.hausdorff_max, s.mean_distance_mean, edge,
-                pcc, s.self_intersections, s.seconds_median);
+    const auto& by_class = s.hausdorff_median_by_curvature;
+    std::printf(
+        "%-18s %3d/%-3zu %3d/%-3d %8.3f %5.3f/%5.3f/%5.3f %8.3f %8.3f %13s %9.1f %6s %6d "
+        "%8.4f\n",
+        results.methods[m].c_str(), s.filled, results.holes.size(), s.closed_meshes, summary.meshes,
+        s.hausdorff_median, by_class[0], by_class[1], by_class[2], s.hausdorff_max,
+        s.mean_distance_mean, edge, s.smallest_angle, pcc, s.self_intersections, s.seconds_median);
   }
   bool header = false;
   for (size_t m = 0; m < results.methods.size(); ++m) {

@@ -204,8 +204,9 @@ std::vector<Table> tables(const BenchResults& results, const BenchSummary& summa
           " holes; medians over the holes each method closed, with bootstrap 95 % intervals; "
           "Wilcoxon's signed-rank test of H against the best median's method on every hole, a "
           "hole left open counting as the worst)",
-      {"method", "holes closed", "meshes closed", "H median / d_m [95 % CI]", "H max / d_m",
-       "mean dist / d_m", "r = edge / d_m", "self-intersections", "vs best: p (pairs)",
+      {"method", "holes closed", "meshes closed", "H median / d_m [95 % CI]",
+       "H median / d_m: low, medium, high curvature", "H max / d_m", "mean dist / d_m (mean)",
+       "r = edge / d_m", "smallest angle", "self-intersections", "vs best: p (pairs)",
        "s / hole (median)"},
       {}};
   for (size_t m = 0; m < results.methods.size(); ++m) {
@@ -220,9 +221,13 @@ std::vector<Table> tables(const BenchResults& results, const BenchSummary& summa
          std::to_string(s.closed_meshes) + " / " + std::to_string(summary.meshes),
          fixed(s.hausdorff_median) + " [" + fixed(s.hausdorff_median_interval.low) + ", " +
              fixed(s.hausdorff_median_interval.high) + "]",
+         fixed(s.hausdorff_median_by_curvature[0]) + ", " +
+             fixed(s.hausdorff_median_by_curvature[1]) + ", " +
+             fixed(s.hausdorff_median_by_curvature[2]),
          fixed(s.hausdorff_max), fixed(s.mean_distance_mean),
          fixed(s.edge_ratio.mean) + " ± " + fixed(s.edge_ratio.sd),
-         std::to_string(s.self_intersections), test, fixed(s.seconds_median, 3)});
+         fixed(s.smallest_angle, 1) + "°", std::to_string(s.self_intersections), test,
+         fixed(s.seconds_median, 3)});
   }
   all.push_back(std::move(overview));
 
@@ -548,6 +553,7 @@ BenchSummary summarize(const BenchResults& results, int area_classes, double tie
   for (size_t m = 0; m < methods; ++m) {
     MethodSummary s;
     std::vector<double> hausdorff, mean_distance, seconds, edge_ratio, area;
+    std::array<std::vector<double>, 3> hausdorff_by_curvature;
     for (size_t h = 0; h < n; ++h) {
       const BenchRun& run = results.runs[h][m];
       s.self_intersections += run.self_intersections;
@@ -558,6 +564,9 @@ BenchSummary summarize(const BenchResults& results, int area_classes, double tie
       mean_distance.push_back(run.score.distance.mean / d_m);
       seconds.push_back(run.score.seconds);
       edge_ratio.push_back(run.score.edge_ratio);
+      hausdorff_by_curvature[static_cast<int>(results.holes[h].hole.curvature)].push_back(
+          hausdorff.back());
+      s.smallest_angle = std::min(s.smallest_angle, run.score.smallest_angle);
       area.push_back(area_in_dm2(results.holes[h]));
     }
     for (const auto& [mesh, holes] : holes_of_mesh) {
@@ -572,6 +581,10 @@ BenchSummary summarize(const BenchResults& results, int area_classes, double tie
     s.hausdorff_median_interval = bootstrap_median_interval(hausdorff);
     s.hausdorff_max = hausdorff.empty() ? 0 : *std::max_element(hausdorff.begin(), hausdorff.end());
     s.mean_distance_mean = mean_sd(mean_distance).mean;
+    for (int c = 0; c < 3; ++c) {
+      s.hausdorff_median_by_curvature[c] =
+          hausdorff_by_curvature[c].empty() ? kNan : median(hausdorff_by_curvature[c]);
+    }
     s.seconds_median = median(seconds);
     s.edge_ratio = mean_sd(edge_ratio);
     s.pearson = pearson(area, hausdorff);
@@ -656,6 +669,11 @@ nlohmann::json summary_json(const BenchResults& results, const BenchSummary& sum
         {"hausdorff_median", s.hausdorff_median},
         {"hausdorff_max", s.hausdorff_max},
         {"mean_distance_mean", s.mean_distance_mean},
+        {"hausdorff_median_by_curvature",
+         {{"low", s.hausdorff_median_by_curvature[0]},
+          {"medium", s.hausdorff_median_by_curvature[1]},
+          {"high", s.hausdorff_median_by_curvature[2]}}},
+        {"smallest_angle_deg", s.smallest_angle},
         {"edge_ratio_mean", s.edge_ratio.mean},
         {"edge_ratio_sd", s.edge_ratio.sd},
         {"pearson_hausdorff_area", s.pearson},

@@ -3,6 +3,7 @@
 // self-contained HTML report.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -57,7 +58,9 @@ struct MethodSummary {
   int filled = 0, closed_meshes = 0, self_intersections = 0;
   double hausdorff_median = 0, hausdorff_max = 0;  // over d_m
   double mean_distance_mean = 0;                   // over d_m, the mean over the filled holes
-  Interval hausdorff_median_interval;              // bootstrap, 95 %, over the holes it filled
+  std::array<double, 3> hausdorff_median_by_curvature{};  // low, medium, high (NaN: no hole)
+  double smallest_angle = 180;         // degrees, over the patches of the filled holes
+  Interval hausdorff_median_interval;  // bootstrap, 95 %, over the holes it filled
   SignedRankTest versus_best;  // H against the best method's on every hole (a failure: +inf)
   double seconds_median = 0;
   MeanSd edge_ratio;   // Table 8, over the filled holes

@@ -22,8 +22,9 @@ struct HoleScore {
   double area = 0;      // area of the removed faces
   bool filled = false;  // closed: no boundary loop of the result runs along it
   std::string failure;
-  SurfaceDistance distance;  // first = the patch, second = the removed faces
-  double edge_ratio = 0;     // mean patch edge / d_m
+  SurfaceDistance distance;   // first = the patch, second = the removed faces
+  double edge_ratio = 0;      // mean patch edge / d_m
+  double smallest_angle = 0;  // of the patch's faces, in degrees
   int new_vertices = 0;
   int new_faces = 0;
   double seconds = 0;

@@ -48,6 +48,9 @@ ManifoldCheck check_manifold(const Mesh& mesh);
 /// Mean length of the unique edges of `faces` (the edge ratio r of Table 8 divides it by d_m).
 double mean_edge_length(const Mesh& mesh, const std::vector<int>& faces);
 
+/// The smallest corner angle of `faces`, in degrees (180 for no face).
+double smallest_angle_degrees(const Mesh& mesh, const std::vector<int>& faces);
+
 /// The faces whose provenance is `hole` (or every generated face for kAnyHole).
 inline constexpr int kAnyHole = -2;
 std::vector<int> faces_of_hole(const Mesh& mesh, int hole);

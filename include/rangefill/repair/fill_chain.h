@@ -155,6 +155,7 @@ struct SurfaceContext {
   double mean_edge;  // d_m
   IntersectionIndex
       faces;  // for refusing fills that would cut through the surface (near the loops)
+  bool larger_angles = true;  // each fill given larger angles (patch_angles.h) before its checks
 };
 
 /// Fills `hole` by the first strategy of options.strategies that gives a fill; nullopt when none

@@ -1,8 +1,9 @@
 // Each hole filled by what its own surface says works best: an outer band of known faces around
 // the hole is hidden, the enlarged hole is filled by each candidate filler, each fill is scored
-// by its distance to the hidden band, and the hole itself is then filled by the candidates in the
-// order of their scores (self-validation; the band plays the part of the ground truth the hole
-// lacks).
+// by its distance to the hidden band (as the filler made it: the angle pass, which reshapes
+// triangles over the same surface, is left out of the test), and the hole itself is then filled by
+// the candidates in the order of their scores (self-validation; the band plays the part of the
+// ground truth the hole lacks).
 #pragma once
 
 #include <memory>
