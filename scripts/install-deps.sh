@@ -5,7 +5,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libopencv-dev libpcl-dev libceres-dev libsuitesparse-dev
   libcgal-dev libgtest-dev libbenchmark-dev
-  nlohmann-json3-dev libcli11-dev zlib1g-dev libpng-dev libtiff-dev libopenexr-dev
+  nlohmann-json3-dev libcli11-dev zlib1g-dev libpng-dev libjpeg-dev libtiff-dev libopenexr-dev
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module (python/)
   python3-matplotlib  # the plots of python/examples/fill_depth_folder.py
   clang-14 libclang-rt-14-dev  # libFuzzer and the sanitizer runtimes (scripts/fuzz.sh)

@@ -9,19 +9,12 @@
 #include <vector>
 
 #include "rangefill/core/parallel.h"
+#include "depth/color_guide.h"
 #include "rangefill/depth/depth_image.h"
 
 namespace rangefill {
 
 namespace {
-
-// How much farther (pixels) than the nearest guess a guess may come from and still make its
-// surface the one a pixel takes, the far one being preferred. Tuned on the depth kit's seeds that
-// are not reported (rendered frames seed 5, sensor frames seeds 5–6; README, Depth maps): pooled
-// RMSE 96.6 and 204.9 mm with 4 pixels; 117.7 and 361.9 with no limit (the farthest surface
-// always: across a large invalid region a line sees surfaces that are not the pixel's); with 2
-// or 8 (for constants, no limit for interpolations) 110.7 and 228.7, 105.9 and 228.4.
-constexpr float kFarSurfaceMargin = 4;
 
 // A guess at a pixel's inverse depth, its weight and the distance (pixels) of the nearest data
 // pixel it comes from.
@@ -38,16 +31,23 @@ constexpr int kLines = 4;
 // lines' steps, and the reciprocals 1 / n of step counts (no division for each of the pixels).
 struct GuessRules {
   float ratio;  // 1 + discontinuity
+  const cv::Mat& color;  // CV_32FC3 or empty
   std::array<float, kLines> step_length = {1, 1, std::sqrt(2.0F), std::sqrt(2.0F)};
   std::array<float, kLines> per_squared_step = {1, 1, 0.5F, 0.5F};
   std::vector<float> reciprocal;
 
-  GuessRules(double discontinuity, int longest_line)
-      : ratio(static_cast<float>(1 + discontinuity)), reciprocal(longest_line + 1, 0) {
+  GuessRules(double discontinuity, int longest_line, const cv::Mat& color)
+      : ratio(static_cast<float>(1 + discontinuity)), color(color), reciprocal(longest_line + 1, 0) {
     for (size_t n = 1; n < reciprocal.size(); ++n) reciprocal[n] = 1.0F / static_cast<float>(n);
   }
   // same_surface for inverse depths.
   bool same_surface(float a, float b) const { return std::max(a, b) <= ratio * std::min(a, b); }
+  // How much a guess from pixel `end` counts at `pixel`: 1 without colour, else the colour
+  // affinity of the two (color_affinity).
+  float affinity(cv::Point pixel, cv::Point end) const {
+    return color.empty() ? 1.0F
+                         : color_affinity(color.at<cv::Vec3f>(pixel), color.at<cv::Vec3f>(end));
+  }
 };
 
 // A pixel's guesses of one kind, at most 2 a line.
@@ -56,23 +56,48 @@ struct Guesses {
   int count = 0;
   void add(Guess guess) { guesses[count++] = guess; }
 
-  // The weighted mean of the guesses on the surface (rules.same_surface) of the farthest (the
-  // smallest inverse depth) among those from at most kFarSurfaceMargin pixels beyond the nearest.
-  float far_surface_mean(const GuessRules& rules) const {
-    float nearest = guesses[0].distance;
-    for (int i = 1; i < count; ++i) nearest = std::min(nearest, guesses[i].distance);
-    const auto within_reach = [&](const Guess& guess) {
-      return guess.distance <= nearest + kFarSurfaceMargin;
-    };
-    float farthest = std::numeric_limits<float>::max();
+  // Whether guess i counts: without colour, those from at most kFarSurfaceMargin pixels beyond
+  // the nearest (a surface seen far away across a large invalid region is not the pixel's); with
+  // colour, all, their affinities telling which surface is the pixel's.
+  std::array<bool, 8> counted(const GuessRules& rules) const {
+    std::array<bool, 8> counts{};
+    float nearest = std::numeric_limits<float>::max();
+    for (int i = 0; i < count; ++i) nearest = std::min(nearest, guesses[i].distance);
     for (int i = 0; i < count; ++i) {
-      if (within_reach(guesses[i])) farthest = std::min(farthest, guesses[i].inverse);
+      counts[i] = (!rules.color.empty()) || guesses[i].distance <= nearest + kFarSurfaceMargin;
     }
-    float sum = 0, weight = 0;
+    return counts;
+  }
+
+  // The surface a pixel takes, as the smallest inverse depth on it: without colour, the farthest
+  // of the counted guesses (the background goes on behind an occluder); with colour, the surface
+  // whose guesses (rules.same_surface) weigh most, weights holding the colour affinities.
+  float surface(const GuessRules& rules, const std::array<bool, 8>& counts) const {
+    float best = std::numeric_limits<float>::max(), heaviest = -1;
     for (int i = 0; i < count; ++i) {
-      if (!within_reach(guesses[i]) || !rules.same_surface(guesses[i].inverse, farthest)) {
+      if (!counts[i]) continue;
+      if (rules.color.empty()) {
+        best = std::min(best, guesses[i].inverse);
         continue;
       }
+      float weight = 0, lowest = guesses[i].inverse;
+      for (int j = 0; j < count; ++j) {
+        if (!rules.same_surface(guesses[i].inverse, guesses[j].inverse)) continue;
+        weight += guesses[j].weight;
+        lowest = std::min(lowest, guesses[j].inverse);
+      }
+      if (weight > heaviest) heaviest = weight, best = lowest;
+    }
+    return best;
+  }
+
+  // The weighted mean of the counted guesses on the pixel's surface.
+  float surface_mean(const GuessRules& rules) const {
+    const std::array<bool, 8> counts = counted(rules);
+    const float lowest = surface(rules, counts);
+    float sum = 0, weight = 0;
+    for (int i = 0; i < count; ++i) {
+      if (!counts[i] || !rules.same_surface(guesses[i].inverse, lowest)) continue;
       sum += guesses[i].weight * guesses[i].inverse;
       weight += guesses[i].weight;
     }
@@ -214,17 +239,35 @@ void sweep_up(const Round& round, int begin, int end, const std::vector<std::arr
   }
 }
 
-// The guesses line `line` gives a pixel at `at` from its ends `a` and `b` (inverse 0: none),
-// added to `interpolations` or `constants`: two ends on one surface give the linear interpolation
-// weighted by 1 / span², others each a constant weighted by 1 / distance².
-void add_guesses_of_line(End a, End b, int at, int line, const GuessRules& rules,
+// The pixel of an end of line `line` through `pixel`.
+cv::Point end_pixel(const End& end, int line, cv::Point pixel) {
+  switch (line) {
+    case 0:
+      return {end.at, pixel.y};
+    case 1:
+      return {pixel.x, end.at};
+    case 2:
+      return {pixel.x + (end.at - pixel.y), end.at};
+    default:
+      return {pixel.x - (end.at - pixel.y), end.at};
+  }
+}
+
+// The guesses line `line` gives `pixel` from its ends `a` and `b` (inverse 0: none), added to
+// `interpolations` or `constants`: two ends on one surface give the linear interpolation weighted
+// by 1 / span², others each a constant weighted by 1 / distance²; each weight times the ends'
+// colour affinities to the pixel.
+void add_guesses_of_line(End a, End b, cv::Point pixel, int line, const GuessRules& rules,
                          Guesses& interpolations, Guesses& constants) {
+  const int at = line == 0 ? pixel.x : pixel.y;
   const float step_length = rules.step_length[line];
   if (a.inverse > 0 && b.inverse > 0 && rules.same_surface(a.inverse, b.inverse)) {
     const float per_step = rules.reciprocal[b.at - a.at];
     const float t = static_cast<float>(at - a.at) * per_step;
+    const float affinity = rules.affinity(pixel, end_pixel(a, line, pixel)) *
+                           rules.affinity(pixel, end_pixel(b, line, pixel));
     interpolations.add({a.inverse + t * (b.inverse - a.inverse),
-                        per_step * per_step * rules.per_squared_step[line],
+                        affinity * per_step * per_step * rules.per_squared_step[line],
                         static_cast<float>(std::min(at - a.at, b.at - at)) * step_length});
     return;
   }
@@ -232,7 +275,9 @@ void add_guesses_of_line(End a, End b, int at, int line, const GuessRules& rules
     if (end.inverse <= 0) continue;
     const int steps = std::abs(at - end.at);
     const float per_step = rules.reciprocal[steps];
-    constants.add({end.inverse, per_step * per_step * rules.per_squared_step[line],
+    constants.add({end.inverse,
+                   rules.affinity(pixel, end_pixel(end, line, pixel)) * per_step * per_step *
+                       rules.per_squared_step[line],
                    static_cast<float>(steps) * step_length});
   }
 }
@@ -240,9 +285,10 @@ void add_guesses_of_line(End a, End b, int at, int line, const GuessRules& rules
 }  // namespace
 
 cv::Mat fill_along_lines(const cv::Mat& z, const cv::Mat& data, const cv::Mat& to_fill,
-                         double discontinuity, int threads) {
+                         double discontinuity, int threads, const cv::Mat& color) {
   CV_Assert(z.type() == CV_32FC1 && data.type() == CV_8UC1 && to_fill.type() == CV_8UC1 &&
-            data.size() == z.size() && to_fill.size() == z.size() && threads >= 1);
+            data.size() == z.size() && to_fill.size() == z.size() && threads >= 1 &&
+            (color.empty() || (color.type() == CV_32FC3 && color.size() == z.size())));
   cv::Mat inverse(z.size(), CV_32F);
   for (int row = 0; row < z.rows; ++row) {
     const float* depth = z.ptr<float>(row);
@@ -253,7 +299,7 @@ cv::Mat fill_along_lines(const cv::Mat& z, const cv::Mat& data, const cv::Mat& t
       values[col] = is_data / (depth[col] + (1 - is_data));  // 1 / z at data, 0 elsewhere
     }
   }
-  const GuessRules rules(discontinuity, std::max(z.rows, z.cols));
+  const GuessRules rules(discontinuity, std::max(z.rows, z.cols), color);
   const int bands = std::min(threads, z.rows);
   const auto band = [&](int b) {
     return static_cast<int>(static_cast<long long>(z.rows) * b / bands);
@@ -271,13 +317,13 @@ cv::Mat fill_along_lines(const cv::Mat& z, const cv::Mat& data, const cv::Mat& t
                [&](cv::Point pixel, const Ends& before, const Ends& after) {
                  Guesses interpolations, constants;
                  for (int line = 0; line < kLines; ++line) {
-                   add_guesses_of_line(before[line], after[line], line == 0 ? pixel.x : pixel.y,
-                                       line, rules, interpolations, constants);
+                   add_guesses_of_line(before[line], after[line], pixel, line, rules,
+                                       interpolations, constants);
                  }
                  if (interpolations.count > 0) {
-                   filled.at<float>(pixel) = 1 / interpolations.far_surface_mean(rules);
+                   filled.at<float>(pixel) = 1 / interpolations.surface_mean(rules);
                  } else if (constants.count > 0) {
-                   filled.at<float>(pixel) = 1 / constants.far_surface_mean(rules);
+                   filled.at<float>(pixel) = 1 / constants.surface_mean(rules);
                  }
                });
     });

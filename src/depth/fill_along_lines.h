@@ -6,6 +6,12 @@
 
 namespace rangefill {
 
+/// How much farther (pixels) than the nearest surface a surface may be seen from a pixel and still
+/// be the one the pixel takes, the far one being preferred (the background goes on behind an
+/// occluder): beyond it, across a large invalid region, a line sees surfaces that are not the
+/// pixel's. Chosen on the depth kit's tuning frames (docs/depth-maps.md).
+constexpr float kFarSurfaceMargin = 4;
+
 /// Fills the pixels of `to_fill` (CV_8UC1, non-zero to fill) from the pixels of `data` (CV_8UC1)
 /// of `z` (CV_32FC1, metres). Returns CV_32FC1 metres at the pixels filled, 0 elsewhere: a pixel
 /// is left only when no pixel of `data` lies on its row, its column or its diagonals, nor beyond
@@ -20,9 +26,11 @@ namespace rangefill {
 /// in fill_depth's step 2), among those that come from no more than 4 pixels beyond the nearest
 /// (a surface seen far away along one line, across a large invalid region, does not override the
 /// near one).
+/// With `color` (CV_32FC3, guide_color), each guess's weight is multiplied by the colour affinity
+/// of the pixel to the ends it comes from (color_guide.h), as a joint-bilateral filter weighs.
 /// O(pixels), no window per hole. Pixels left after a round are filled in the next from those
 /// filled, until none is left or a round fills none.
 cv::Mat fill_along_lines(const cv::Mat& z, const cv::Mat& data, const cv::Mat& to_fill,
-                         double discontinuity, int threads);
+                         double discontinuity, int threads, const cv::Mat& color = {});
 
 }  // namespace rangefill

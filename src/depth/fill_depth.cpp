@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 #include <opencv2/imgproc.hpp>
 
+#include "depth/color_guide.h"
 #include "depth/fill_along_lines.h"
 #include "rangefill/core/errors.h"
 #include "rangefill/core/parallel.h"
@@ -87,38 +88,101 @@ std::vector<bool> occluding(const cv::Mat& z, const cv::Mat& data, const cv::Mat
   return front;
 }
 
-// Step 2 of fill_depth: the valid pixels of a window the hole is filled from, CV_8U: those whose
-// nearest rim pixel does not occlude and is on the same surface. Empty when the hole has no rim.
-// `at_edge` tells whether some rim pixels occlude.
-cv::Mat fill_source(const cv::Mat& z, const cv::Mat& data, const cv::Mat& hole,
-                    double discontinuity, bool& at_edge) {
+// Distances (pixels) within `hole` from the pixels of `seeds` along 8-neighbour paths through
+// the hole (a chamfer transform in two raster sweeps each way), CV_32F; infinite where no path
+// reaches. cv::distanceTransform measures straight across what is not hole.
+cv::Mat distance_through(const cv::Mat& hole, const cv::Mat& seeds) {
+  cv::Mat distance(hole.size(), CV_32F, cv::Scalar(std::numeric_limits<float>::infinity()));
+  distance.setTo(0, seeds);
+  const std::array<cv::Point, 4> before = {{{-1, -1}, {0, -1}, {1, -1}, {-1, 0}}};
+  const auto relax = [&](int row, int col, int direction) {
+    float& best = distance.at<float>(row, col);
+    for (const cv::Point& step : before) {
+      const cv::Point q = cv::Point(col, row) + direction * step;
+      if (q.x < 0 || q.y < 0 || q.x >= hole.cols || q.y >= hole.rows) continue;
+      const float length = step.x != 0 && step.y != 0 ? std::sqrt(2.0F) : 1.0F;
+      best = std::min(best, distance.at<float>(q) + length);
+    }
+  };
+  for (int sweep = 0; sweep < 2; ++sweep) {
+    for (int row = 0; row < hole.rows; ++row) {
+      for (int col = 0; col < hole.cols; ++col) {
+        if (hole.at<std::uint8_t>(row, col)) relax(row, col, 1);
+      }
+    }
+    for (int row = hole.rows - 1; row >= 0; --row) {
+      for (int col = hole.cols - 1; col >= 0; --col) {
+        if (hole.at<std::uint8_t>(row, col)) relax(row, col, -1);
+      }
+    }
+  }
+  return distance;
+}
+
+// How much nearer (pixels) the occluding rim pixels than the others a hole pixel must be to lie on
+// the near side: the background goes on behind an occluder, a sensor's shadow beside it is on the
+// far side. Chosen on the depth kit's tuning frames (docs/depth-maps.md).
+constexpr float kNearSideMargin = 8;
+
+// Steps 1–2 of fill_depth for a hole's window: the hole's pixels on the far and the near side of
+// the occluding edges its rim sees, and the valid pixels each side is filled from.
+struct HoleSides {
+  cv::Mat back, front;                // CV_8U, the hole's pixels on either side
+  cv::Mat back_source, front_source;  // CV_8U; empty when the side has no pixel
+  bool at_edge = false;               // some rim pixels occlude
+  bool supported() const { return !back_source.empty() || !front_source.empty(); }
+};
+
+// The sides of `hole` (step 2 of fill_depth): each valid pixel of the window belongs to the side
+// of its nearest rim pixel, occluding or not, when on that pixel's surface; a hole pixel is on the
+// near side when it is nearer the occluding rim pixels than the others, through the hole, by more
+// than kNearSideMargin. A side without valid pixels gives its hole pixels to the other.
+HoleSides hole_sides(const cv::Mat& z, const cv::Mat& data, const cv::Mat& hole,
+                     double discontinuity) {
+  HoleSides sides;
   cv::Mat rim_mask;
   cv::dilate(hole, rim_mask, cv::Mat::ones(3, 3, CV_8U));
   rim_mask &= data;
   std::vector<cv::Point> rim;
   cv::findNonZero(rim_mask, rim);
-  if (rim.empty()) return {};
+  if (rim.empty()) return sides;
   const std::vector<bool> front = occluding(z, data, hole, rim, discontinuity);
-  at_edge = std::find(front.begin(), front.end(), true) != front.end();
-  if (!at_edge) return data;
-
+  sides.at_edge = std::find(front.begin(), front.end(), true) != front.end();
+  if (!sides.at_edge) {
+    sides.back = hole;
+    sides.back_source = data;
+    return sides;
+  }
   cv::Mat distance, nearest;
   cv::distanceTransform(rim_mask == 0, distance, nearest, cv::DIST_L2, cv::DIST_MASK_5,
                         cv::DIST_LABEL_PIXEL);
   std::vector<int> rim_of_label(rim.size() + 1, -1);
   for (size_t i = 0; i < rim.size(); ++i)
     rim_of_label[nearest.at<int>(rim[i])] = static_cast<int>(i);
-  cv::Mat source = cv::Mat::zeros(z.size(), CV_8U);
+  cv::Mat back_source = cv::Mat::zeros(z.size(), CV_8U), front_source = back_source.clone();
   for (int row = 0; row < z.rows; ++row) {
     for (int col = 0; col < z.cols; ++col) {
       if (!data.at<std::uint8_t>(row, col)) continue;
       const int r = rim_of_label[nearest.at<int>(row, col)];
-      if (!front[r] && same_surface(z.at<float>(row, col), z.at<float>(rim[r]), discontinuity)) {
-        source.at<std::uint8_t>(row, col) = 255;
+      if (same_surface(z.at<float>(row, col), z.at<float>(rim[r]), discontinuity)) {
+        (front[r] ? front_source : back_source).at<std::uint8_t>(row, col) = 255;
       }
     }
   }
-  return source;
+  // Distances through the hole to the occluding rim pixels and to the others.
+  cv::Mat front_rim = cv::Mat::zeros(z.size(), CV_8U), back_rim = front_rim.clone();
+  for (size_t i = 0; i < rim.size(); ++i) {
+    (front[i] ? front_rim : back_rim).at<std::uint8_t>(rim[i]) = 255;
+  }
+  const cv::Mat to_front = distance_through(hole, front_rim);
+  const cv::Mat to_back = distance_through(hole, back_rim);
+  sides.front = hole & (to_front + kNearSideMargin < to_back);
+  if (cv::countNonZero(back_source) == 0) sides.front = hole;
+  if (cv::countNonZero(front_source) == 0) sides.front.setTo(0);
+  sides.back = hole & ~sides.front;
+  if (cv::countNonZero(sides.back) > 0) sides.back_source = back_source;
+  if (cv::countNonZero(sides.front) > 0) sides.front_source = front_source;
+  return sides;
 }
 
 // Before step 3 of fill_depth: every pixel of the window farther than `reach` from the source
@@ -223,10 +287,12 @@ void write_fill(cv::Mat& out, cv::Point p, float metres) {
 }
 
 // Fills hole `label` of `labels` (connectedComponentsWithStats' labels and `stats`) into `out`,
-// the output image (of the depth's type), at the hole's pixels only.
-HoleOutcome fill_depth_hole(const cv::Mat& z, const cv::Mat& data, const cv::Mat& labels,
-                            const cv::Mat& stats, int label, const Inpainter& inpainter,
-                            const DepthFillOptions& options, cv::Mat& out) {
+// the output image (of the depth's type), at the hole's pixels only: each side of the hole
+// (hole_sides) from its own source, along lines or by the back-end (null: along lines).
+HoleOutcome fill_depth_hole(const cv::Mat& z, const cv::Mat& data, const cv::Mat& color,
+                            const cv::Mat& labels, const cv::Mat& stats, int label,
+                            const Inpainter* inpainter, const DepthFillOptions& options,
+                            cv::Mat& out) {
   HoleOutcome outcome = hole_outcome_by_size(stats, label, z.size(), options);
   if (outcome.kind != HoleOutcome::filled) return outcome;
   const cv::Rect box = hole_box(stats, label);
@@ -234,15 +300,35 @@ HoleOutcome fill_depth_hole(const cv::Mat& z, const cv::Mat& data, const cv::Mat
   const cv::Rect window = cv::Rect(box.x - m, box.y - m, box.width + 2 * m, box.height + 2 * m) &
                           cv::Rect(0, 0, z.cols, z.rows);
   const cv::Mat hole = labels(window) == label;
-  cv::Mat source =
-      fill_source(z(window), data(window), hole, options.discontinuity, outcome.at_edge);
-  if (source.empty()) {
+  const cv::Mat window_color = color.empty() ? cv::Mat() : color(window);
+  const HoleSides sides = hole_sides(z(window), data(window), hole, options.discontinuity);
+  if (!sides.supported()) {
     outcome.kind = HoleOutcome::without_support;
     return outcome;
   }
-  cv::Mat window_z = z(window);
-  if (options.reach > 0) extend_source_beyond_reach(window_z, source, options.reach);
-  const cv::Mat fill = fill_from_source(window_z, hole, source, inpainter, options);
+  outcome.at_edge = sides.at_edge;
+  cv::Mat fill(window.size(), CV_32F, cv::Scalar(0));
+  for (const auto& [side, side_source] :
+       {std::pair{sides.back, sides.back_source}, {sides.front, sides.front_source}}) {
+    if (side_source.empty()) continue;
+    cv::Mat side_fill;
+    if (inpainter == nullptr) {
+      side_fill = fill_along_lines(z(window), side_source, side, options.discontinuity, 1,
+                                   window_color);
+    } else {
+      cv::Mat window_z = z(window), source = side_source.clone();
+      if (options.reach > 0) extend_source_beyond_reach(window_z, source, options.reach);
+      side_fill = fill_from_source(window_z, side, source, *inpainter, options);
+    }
+    side_fill.copyTo(fill, side);
+  }
+  // A side whose lines see none of its source (a near side cut off from its occluder) is filled
+  // from every valid pixel of the window.
+  const cv::Mat unfilled = hole & (fill == 0);
+  if (cv::countNonZero(unfilled) > 0) {
+    fill_along_lines(z(window), data(window), unfilled, options.discontinuity, 1, window_color)
+        .copyTo(fill, unfilled);
+  }
   for (int row = 0; row < window.height; ++row) {
     for (int col = 0; col < window.width; ++col) {
       if (hole.at<std::uint8_t>(row, col)) {
@@ -272,7 +358,7 @@ cv::Mat holes_mask(const cv::Mat& labels, const std::vector<std::uint8_t>& chose
 // fill_depth with options.fast: the holes to fill (`all_holes`, but those left for their size)
 // at once by fill_along_lines.
 std::vector<HoleOutcome> fill_depth_along_lines(const cv::Mat& z, const cv::Mat& data,
-                                                const cv::Mat& labels, const cv::Mat& stats,
+                                                const cv::Mat& color, const cv::Mat& labels, const cv::Mat& stats,
                                                 const cv::Mat& all_holes,
                                                 const DepthFillOptions& options, cv::Mat& out) {
   std::vector<HoleOutcome> outcomes(std::max(0, stats.rows - 1));
@@ -282,7 +368,7 @@ std::vector<HoleOutcome> fill_depth_along_lines(const cv::Mat& z, const cv::Mat&
     if (outcomes[i].kind == HoleOutcome::filled) to_fill_label[i + 1] = 255;
   }
   const cv::Mat to_fill = holes_mask(labels, to_fill_label, all_holes);
-  const cv::Mat fill = fill_along_lines(z, data, to_fill, options.discontinuity, options.threads);
+  const cv::Mat fill = fill_along_lines(z, data, to_fill, options.discontinuity, options.threads, color);
   // A hole is filled whole or not at all (fill_along_lines fills a pixel's 8 neighbours in the
   // round after it): one without a fill had no data on any line through it.
   for (int row = 0; row < z.rows; ++row) {
@@ -301,6 +387,12 @@ std::vector<HoleOutcome> fill_depth_along_lines(const cv::Mat& z, const cv::Mat&
 }
 
 }  // namespace
+
+std::vector<std::string> depth_filler_names() {
+  std::vector<std::string> names = {kAlongLines};
+  for (const std::string& name : inpainter_names()) names.push_back(name);
+  return names;
+}
 
 InpainterOptions depth_inpainting_defaults() {
   InpainterOptions options;
@@ -338,8 +430,11 @@ DepthFillStats fill_depth(cv::InputArray depth_in, cv::InputArray mask_in, cv::O
         "fill_depth: discontinuity must be positive, margin and threads at least 1 and "
         "max_hole_pixels not negative");
   }
+  const cv::Mat color = guide_color(options.color, depth.size(), "fill_depth");
   const std::unique_ptr<Inpainter> inpainter =
-      options.fast ? nullptr : make_inpainter(options.inpainter, options.inpainting);
+      options.fast || options.inpainter == kAlongLines
+          ? nullptr
+          : make_inpainter(options.inpainter, options.inpainting);
 
   cv::Mat labels, stats, centroids;
   const int components =
@@ -349,13 +444,14 @@ DepthFillStats fill_depth(cv::InputArray depth_in, cv::InputArray mask_in, cv::O
   std::vector<HoleOutcome> outcomes(std::max(0, components - 1));
   std::vector<std::exception_ptr> failures(outcomes.size());
   if (options.fast) {
-    outcomes = fill_depth_along_lines(z, data, labels, stats, to_fill, options, out);
+    outcomes = fill_depth_along_lines(z, data, color, labels, stats, to_fill, options, out);
   } else {
     // Holes are independent: each reads the input only and writes its own pixels, so they can
     // run at once; outcomes (and a failure, the first in hole order) are taken in hole order.
     parallel_for(static_cast<int>(outcomes.size()), options.threads, [&](int i) {
       try {
-        outcomes[i] = fill_depth_hole(z, data, labels, stats, i + 1, *inpainter, options, out);
+        outcomes[i] = fill_depth_hole(z, data, color, labels, stats, i + 1, inpainter.get(), options,
+                                      out);
       } catch (...) {
         failures[i] = std::current_exception();
       }

@@ -51,6 +51,17 @@ cv::Mat read_mask_image(const fs::path& path) {
   return decode_single_channel(path) != 0;
 }
 
+cv::Mat read_color_image(const fs::path& path) {
+  const std::string bytes = read_file(path);
+  if (bytes.empty()) throw InvalidInput(path.string() + ": file is empty");
+  const cv::Mat image = detail::decode_color_image(bytes, path.string());
+  if (image.depth() != CV_8U || (image.channels() != 1 && image.channels() != 3)) {
+    throw InvalidInput(path.string() + ": " + cv::typeToString(image.type()) +
+                       " is not a colour image: expected 8-bit grey or colour (RGB)");
+  }
+  return image;
+}
+
 bool is_depth_image_path(const fs::path& path) {
   const std::string extension = lower_extension(path);
   return extension == ".png" || extension == ".tif" || extension == ".tiff" || extension == ".exr";

@@ -1,6 +1,9 @@
 #include "io/image_codecs.h"
 
 #include <png.h>
+// jpeglib.h needs FILE and size_t declared first.
+#include <cstdio>
+#include <jpeglib.h>
 
 #include <algorithm>
 #include <array>
@@ -141,6 +144,58 @@ std::string encode_png(const cv::Mat& image, const std::string& name) {
   return output;
 }
 
+// --- JPEG (libjpeg) ----------------------------------------------------------------------------
+
+// libjpeg reports errors through error_exit, which must not return: a longjmp back to the decoder.
+struct JpegErrors {
+  jpeg_error_mgr manager;
+  std::jmp_buf jump;
+  char message[JMSG_LENGTH_MAX] = "";
+};
+
+void jpeg_failed(j_common_ptr jpeg) {
+  auto* errors = reinterpret_cast<JpegErrors*>(jpeg->err);
+  (*jpeg->err->format_message)(jpeg, errors->message);
+  std::longjmp(errors->jump, 1);
+}
+
+void jpeg_warned(j_common_ptr /*jpeg*/, int /*level*/) {}
+
+// Decodes into `image` (CV_8UC3 BGR or CV_8UC1); false with errors.message set on a corrupt file.
+bool decode_jpeg_into(std::string_view bytes, const std::string& name, JpegErrors& errors,
+                      jpeg_decompress_struct& jpeg, cv::Mat& image) {
+  if (setjmp(errors.jump)) return false;
+  jpeg_create_decompress(&jpeg);
+  jpeg_mem_src(&jpeg, reinterpret_cast<const unsigned char*>(bytes.data()),
+               static_cast<unsigned long>(bytes.size()));
+  jpeg_read_header(&jpeg, TRUE);
+  const bool grey = jpeg.num_components == 1;
+  jpeg.out_color_space = grey ? JCS_GRAYSCALE : JCS_EXT_BGR;
+  check_size(jpeg.image_width, jpeg.image_height, grey ? 1 : 3, bytes, name);
+  jpeg_start_decompress(&jpeg);
+  image.create(static_cast<int>(jpeg.output_height), static_cast<int>(jpeg.output_width),
+               grey ? CV_8UC1 : CV_8UC3);
+  while (jpeg.output_scanline < jpeg.output_height) {
+    JSAMPROW row = image.ptr(static_cast<int>(jpeg.output_scanline));
+    jpeg_read_scanlines(&jpeg, &row, 1);
+  }
+  jpeg_finish_decompress(&jpeg);
+  return true;
+}
+
+cv::Mat decode_jpeg(std::string_view bytes, const std::string& name) {
+  JpegErrors errors;
+  jpeg_decompress_struct jpeg{};
+  jpeg.err = jpeg_std_error(&errors.manager);
+  errors.manager.error_exit = jpeg_failed;
+  errors.manager.emit_message = jpeg_warned;
+  cv::Mat image;
+  const bool decoded = decode_jpeg_into(bytes, name, errors, jpeg, image);
+  jpeg_destroy_decompress(&jpeg);
+  if (!decoded) throw InvalidInput(name + ": corrupt JPEG: " + one_line(errors.message));
+  return image;
+}
+
 // The TIFF and EXR codecs, from their module (io/tiff_exr.h), loaded on the first call.
 const tiff_exr::Codecs& tiff_exr_codecs() {
   static const tiff_exr::Codecs codecs = *reinterpret_cast<const tiff_exr::Codecs*>(
@@ -167,6 +222,11 @@ cv::Mat decode_image(std::string_view bytes, const std::string& name) {
     return tiff_exr_codecs().decode(bytes, name, tiff_exr::Format::exr);
   }
   throw InvalidInput(name + ": not a PNG, TIFF or EXR image");
+}
+
+cv::Mat decode_color_image(std::string_view bytes, const std::string& name) {
+  if (starts_with(bytes, "\xff\xd8\xff")) return decode_jpeg(bytes, name);
+  return decode_image(bytes, name);
 }
 
 std::string encode_image(const cv::Mat& image, const std::string& extension,

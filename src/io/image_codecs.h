@@ -17,6 +17,9 @@ namespace rangefill::detail {
 /// corrupt file.
 cv::Mat decode_image(std::string_view bytes, const std::string& name);
 
+/// The same, and JPEG (8-bit grey or BGR): what a colour camera writes.
+cv::Mat decode_color_image(std::string_view bytes, const std::string& name);
+
 /// `image` encoded as the format of `extension` (".png", ".tif", ".tiff" or ".exr"): PNG holds 8-
 /// or 16-bit samples, 1 or 3 channels (BGR); TIFF 8-bit, 16-bit or float, one channel; EXR float,
 /// one channel ("Y"). Throws InvalidInput("<name>: ...") for an image the format cannot hold.

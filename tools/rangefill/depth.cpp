@@ -19,7 +19,8 @@ namespace {
 namespace fs = std::filesystem;
 
 struct DepthCommand {
-  std::string input, output, mask, filled_mask, batch, out_dir, mask_dir, shard = "0/1";
+  std::string input, output, mask, filled_mask, color, batch, out_dir, mask_dir, color_dir;
+  std::string shard = "0/1";
   std::string trend = "none";
   int threads = hardware_threads();
   bool json = false;
@@ -50,13 +51,19 @@ struct FileFill {
   double fill_seconds = 0;  // fill_depth alone, no reading or writing
 };
 
-// Reads, fills and writes one image (`mask` empty: fill the invalid pixels); with `filled_mask`,
-// also the mask of the pixels filled (8-bit PNG, 255 = filled).
-FileFill fill_file(const fs::path& input, const fs::path& mask, const fs::path& output,
-                   const fs::path& filled_mask, const DepthFillOptions& options) {
-  const cv::Mat depth = read_depth_image(input);
+// The files of one fill: the depth image, and optionally its mask and its colour image.
+struct FillInputs {
+  fs::path depth, mask, color;
+};
+
+// Reads, fills and writes one image (no mask: fill the invalid pixels; a colour image guides the
+// fill); with `filled_mask`, also the mask of the pixels filled (8-bit PNG, 255 = filled).
+FileFill fill_file(const FillInputs& inputs, const fs::path& output, const fs::path& filled_mask,
+                   DepthFillOptions options) {
+  const cv::Mat depth = read_depth_image(inputs.depth);
   check_depth_format(output, depth.type());
-  const cv::Mat mask_image = mask.empty() ? cv::Mat() : read_mask_image(mask);
+  const cv::Mat mask_image = inputs.mask.empty() ? cv::Mat() : read_mask_image(inputs.mask);
+  if (!inputs.color.empty()) options.color = read_color_image(inputs.color);
   cv::Mat filled;
   FileFill result;
   DepthFillStats& stats = result.stats;
@@ -66,8 +73,10 @@ FileFill fill_file(const fs::path& input, const fs::path& mask, const fs::path& 
     result.fill_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   } catch (const InvalidInput& error) {
-    throw InvalidInput(input.string() + (mask.empty() ? "" : " with mask " + mask.string()) + ": " +
-                       error.what());
+    throw InvalidInput(inputs.depth.string() +
+                       (inputs.mask.empty() ? "" : " with mask " + inputs.mask.string()) +
+                       (inputs.color.empty() ? "" : " and colour " + inputs.color.string()) +
+                       ": " + error.what());
   }
   write_depth_image(filled, output);
   if (!filled_mask.empty()) write_mask_image(stats.filled_mask, filled_mask);
@@ -95,8 +104,8 @@ int run_single(const DepthCommand& command) {
   const auto start = std::chrono::steady_clock::now();
   DepthFillOptions options = command.options;
   options.threads = command.threads;
-  const FileFill fill =
-      fill_file(command.input, command.mask, command.output, command.filled_mask, options);
+  const FileFill fill = fill_file({command.input, command.mask, command.color}, command.output,
+                                  command.filled_mask, options);
   const DepthFillStats& stats = fill.stats;
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -114,6 +123,16 @@ int run_single(const DepthCommand& command) {
   return kOk;
 }
 
+// The colour image of depth image `frame` in `dir`: the file of the same stem with an image
+// extension, empty if none.
+fs::path color_image_of(const fs::path& dir, const fs::path& frame) {
+  for (const char* extension : {".png", ".jpg", ".jpeg", ".tif", ".tiff"}) {
+    const fs::path candidate = dir / (frame.stem().string() + extension);
+    if (fs::exists(candidate)) return candidate;
+  }
+  return {};
+}
+
 struct FileOutcome {
   bool written = false;
   std::string error;
@@ -122,13 +141,13 @@ struct FileOutcome {
 
 int run_batch(const DepthCommand& command) {
   if (!command.input.empty() || !command.output.empty() || !command.mask.empty() ||
-      !command.filled_mask.empty()) {
+      !command.filled_mask.empty() || !command.color.empty()) {
     throw UsageError(
-        "--batch takes no input file, -o, --mask or --filled-mask (outputs go to --out-dir, "
-        "masks come from --mask-dir)");
+        "--batch takes no input file, -o, --mask, --color or --filled-mask (outputs go to "
+        "--out-dir, masks come from --mask-dir, colour images from --color-dir)");
   }
-  if (!command.mask_dir.empty() && !fs::is_directory(command.mask_dir)) {
-    throw IoError(command.mask_dir + ": not a directory");
+  for (const std::string& dir : {command.mask_dir, command.color_dir}) {
+    if (!dir.empty() && !fs::is_directory(dir)) throw IoError(dir + ": not a directory");
   }
   if (command.out_dir.empty()) throw UsageError("--batch needs --out-dir");
   const auto [shard, shards] = parse_shard(command.shard);
@@ -162,7 +181,17 @@ int run_batch(const DepthCommand& command) {
         if (!fs::exists(mask)) throw IoError(files[i].string() + ": no mask " + mask.string());
         if (same_file(output, mask)) throw IoError(output.string() + ": is a mask");
       }
-      outcome.stats = fill_file(files[i], mask, output, {}, options).stats;
+      // A frame's colour image has its file stem in --color-dir.
+      fs::path color;
+      if (!command.color_dir.empty()) {
+        color = color_image_of(command.color_dir, files[i]);
+        if (color.empty()) {
+          throw IoError(files[i].string() + ": no colour image " +
+                        (fs::path(command.color_dir) / files[i].stem()).string() +
+                        ".{png,jpg,jpeg,tif,tiff}");
+        }
+      }
+      outcome.stats = fill_file({files[i], mask, color}, output, {}, options).stats;
       outcome.written = true;
     } catch (const std::exception& error) {
       outcome.error = error.what();
@@ -223,6 +252,12 @@ void add_depth_command(CLI::App& app, Runner& runner) {
                   "Write the mask of the pixels filled here (8-bit PNG, 255 = filled)");
   sub->add_option("--mask-dir", command->mask_dir,
                   "With --batch: each frame's mask, the file of the same name in this directory");
+  sub->add_option("--color", command->color,
+                  "Colour image registered to the depth (8-bit RGB or grey, PNG/JPEG/TIFF, same "
+                  "size): its edges part the surfaces of a hole");
+  sub->add_option("--color-dir", command->color_dir,
+                  "With --batch: each frame's colour image, the file of the same stem in this "
+                  "directory");
   sub->add_option("--batch", command->batch, "Fill every depth image of this directory");
   sub->add_option("--out-dir", command->out_dir, "Where --batch writes (same file names)");
   sub->add_option("--threads", command->threads,
@@ -236,13 +271,16 @@ void add_depth_command(CLI::App& app, Runner& runner) {
          "for job arrays")
       ->capture_default_str();
   CLI::Option* inpainter =
-      sub->add_option("--inpainter", options.inpainter, "Back-end: " + join(inpainter_names()))
+      sub->add_option("--inpainter", options.inpainter,
+                      std::string("How each side of a hole is filled: ") + kAlongLines +
+                          " (along rows, columns and diagonals) or a back-end: " +
+                          join(inpainter_names()))
           ->capture_default_str()
-          ->check(CLI::IsMember(inpainter_names()));
+          ->check(CLI::IsMember(depth_filler_names()));
   add_foe_inference_options(sub, options.inpainting);
   sub->add_flag("--fast", options.fast,
-                "Fill along rows, columns and diagonals instead of a back-end per hole: "
-                "4-10 ms a VGA frame, less accurate at depth edges")
+                "Fill along rows, columns and diagonals without looking for occluding edges "
+                "hole by hole: a few ms a VGA frame, less accurate at depth edges")
       ->excludes(inpainter);
   sub->add_option("--max-hole", options.max_hole_pixels,
                   "Leave holes of more pixels as they are (0, the default: no limit)")

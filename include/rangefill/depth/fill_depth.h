@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -18,6 +19,12 @@ namespace rangefill {
 /// (why: README, Depth maps).
 InpainterOptions depth_inpainting_defaults();
 
+/// DepthFillOptions::inpainter that fills along lines (fill_along_lines' rule), no back-end.
+inline const char* const kAlongLines = "lines";
+
+/// kAlongLines, then inpainter_names(): what DepthFillOptions::inpainter takes.
+std::vector<std::string> depth_filler_names();
+
 struct DepthFillOptions {
   /// Fill along lines instead of a back-end per hole: each pixel interpolated in inverse depth
   /// between the valid pixels it sees along its row, column and diagonals, the far surface
@@ -26,7 +33,14 @@ struct DepthFillOptions {
   /// accurate at depth edges (README, Depth maps). Reads discontinuity, threads (bands of rows),
   /// max_hole_pixels and keep_border of the options below.
   bool fast = false;
-  std::string inpainter = "harmonic";  // a name of inpainter_names()
+  /// How each side of a hole is filled from its source (step 3 below): kAlongLines, or a name of
+  /// inpainter_names() for that back-end (slower, and no more accurate on the depth kit:
+  /// docs/depth-maps.md).
+  std::string inpainter = kAlongLines;
+  /// A colour image registered to the depth (CV_8UC3, BGR or RGB; or CV_8UC1 grey), or empty.
+  /// With it, a colour edge parts the sides of an occluding edge (step 2) and weakens the guesses
+  /// that cross it (step 3); without it nothing changes.
+  cv::Mat color;
   InpainterOptions inpainting = depth_inpainting_defaults();
   int threads = hardware_threads();  // holes filled at once; the result does not depend on it
   long long max_hole_pixels = 0;     // larger holes are left as they are; 0: no limit

@@ -18,6 +18,10 @@ cv::Mat read_depth_image(const std::filesystem::path& path);
 /// Reads a mask image of any depth, one channel: CV_8UC1, 255 where the file is non-zero.
 cv::Mat read_mask_image(const std::filesystem::path& path);
 
+/// Reads the colour image that guides a depth fill: PNG, TIFF or JPEG, 8-bit grey (CV_8UC1) or
+/// colour (CV_8UC3, BGR). Throws InvalidInput naming the file otherwise.
+cv::Mat read_color_image(const std::filesystem::path& path);
+
 /// Writes a mask (CV_8UC1) as an 8-bit PNG or TIFF, by the extension, atomically. Throws
 /// InvalidInput (another type or extension) or IoError, naming the file.
 void write_mask_image(const cv::Mat& mask, const std::filesystem::path& path);
