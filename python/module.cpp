@@ -81,15 +81,21 @@ py::array array_of(cv::Mat image) {
     case CV_32FC1:
       dtype = py::dtype::of<float>();
       break;
+    case CV_8UC3:
+      dtype = py::dtype::of<uint8_t>();
+      break;
     default:
       throw ProcessingError("an image of OpenCV type " + std::to_string(image.type()));
   }
   auto* owner = new cv::Mat(std::move(image));
   const py::capsule free(owner, [](void* mat) { delete static_cast<cv::Mat*>(mat); });
-  return py::array(
-      dtype, {owner->rows, owner->cols},
-      {static_cast<py::ssize_t>(owner->step[0]), static_cast<py::ssize_t>(owner->elemSize())},
-      owner->data, free);
+  const auto row = static_cast<py::ssize_t>(owner->step[0]);
+  const auto pixel = static_cast<py::ssize_t>(owner->elemSize());
+  if (owner->channels() == 3) {
+    return py::array(dtype, {owner->rows, owner->cols, 3}, {row, pixel, py::ssize_t{1}},
+                     owner->data, free);
+  }
+  return py::array(dtype, {owner->rows, owner->cols}, {row, pixel}, owner->data, free);
 }
 
 // A depth map's type: uint16 (millimetres) or float32 (metres).
@@ -107,15 +113,30 @@ cv::Mat mask_over(const py::array& mask, py::array& keep) {
   return image_over(mask, dtype, CV_8UC1, "mask (bool or uint8)", keep);
 }
 
+// A colour image (H×W×3 uint8 in any channel order, or H×W uint8 grey) over its array, as
+// CV_8UC3 or CV_8UC1 (the affinities of fill_depth do not depend on the channels' order).
+cv::Mat color_over(const py::array& color, py::array& keep) {
+  if (!color.dtype().is(py::dtype::of<uint8_t>()) ||
+      !(color.ndim() == 2 || (color.ndim() == 3 && color.shape(2) == 3))) {
+    throw InvalidInput("color: an H×W×3 or H×W uint8 array expected, got " +
+                       name_of(color.dtype()) + " of " + std::to_string(color.ndim()) +
+                       " dimensions");
+  }
+  keep = py::array::ensure(color, py::array::c_style);
+  return cv::Mat(static_cast<int>(keep.shape(0)), static_cast<int>(keep.shape(1)),
+                 keep.ndim() == 3 ? CV_8UC3 : CV_8UC1, const_cast<void*>(keep.data()));
+}
+
 // ---------------------------------------------------------------------------------------------
 // Depth maps and back-ends
 
 py::tuple fill_depth_array(const py::array& depth, const std::optional<py::array>& mask,
-                           const DepthFillOptions& options) {
-  py::array depth_keep, mask_keep;
+                           const std::optional<py::array>& color, DepthFillOptions options) {
+  py::array depth_keep, mask_keep, color_keep;
   const int type = depth_type(depth);
   const cv::Mat image = image_over(depth, depth.dtype(), type, "depth", depth_keep);
   const cv::Mat invalid = mask ? mask_over(*mask, mask_keep) : cv::Mat();
+  if (color) options.color = color_over(*color, color_keep);
   cv::Mat filled;
   DepthFillStats stats;
   {
@@ -148,6 +169,15 @@ py::array read_depth(const std::filesystem::path& path) {
     depth = read_depth_image(path);
   }
   return array_of(depth);
+}
+
+py::array read_color(const std::filesystem::path& path) {
+  cv::Mat color;
+  {
+    const py::gil_scoped_release release;
+    color = read_color_image(path);
+  }
+  return array_of(color);
 }
 
 void write_depth(const py::array& depth, const std::filesystem::path& path) {
@@ -271,8 +301,8 @@ void add_depth_functions(py::module_& module) {
   const InpainterOptions& inpainting = depth.inpainting;
   module.def(
       "fill_depth",
-      [](const py::array& image, const std::optional<py::array>& mask, const std::string& inpainter,
-         bool fast, int threads, long long max_hole_pixels, bool keep_border, int reach,
+      [](const py::array& image, const std::optional<py::array>& mask,
+         const std::optional<py::array>& color, const std::string& inpainter, bool fast, int threads, long long max_hole_pixels, bool keep_border, int reach,
          double discontinuity, const std::string& trend, double trend_ring, int margin,
          double radius, const std::string& foe_start, double foe_tolerance, int foe_iterations) {
         DepthFillOptions options;
@@ -288,9 +318,9 @@ void add_depth_functions(py::module_& module) {
         options.margin = margin;
         options.inpainting =
             with_inference(options.inpainting, radius, foe_start, foe_tolerance, foe_iterations);
-        return fill_depth_array(image, mask, options);
+        return fill_depth_array(image, mask, color, options);
       },
-      py::arg("depth"), py::arg("mask") = py::none(), py::kw_only(),
+      py::arg("depth"), py::arg("mask") = py::none(), py::kw_only(), py::arg("color") = py::none(),
       py::arg("inpainter") = depth.inpainter, py::arg("fast") = depth.fast,
       py::arg("threads") = depth.threads, py::arg("max_hole_pixels") = depth.max_hole_pixels,
       py::arg("keep_border") = depth.keep_border, py::arg("reach") = depth.reach,
@@ -303,9 +333,11 @@ void add_depth_functions(py::module_& module) {
 
 depth: H×W uint16 (millimetres, 0 invalid) or float32 (metres, 0 or NaN invalid), any strides.
 mask: H×W bool or uint8, the pixels to fill (non-zero); None fills every invalid pixel.
-The options and their defaults are `rangefill depth`'s (README, Depth maps): inpainter, the
-back-end (backends()); fast, fill along rows, columns and diagonals instead (4-10 ms a VGA
-frame); threads, holes filled at once (every hardware thread; the result does not depend on
+color: H×W×3 uint8 (RGB or BGR) or H×W uint8 grey, registered to the depth, or None: `rangefill
+depth --color`.
+The options and their defaults are `rangefill depth`'s (docs/depth-maps.md): inpainter, 'lines'
+or a back-end (backends()); fast, fill along lines without looking for occluding edges hole by
+hole (a few ms a VGA frame); threads, holes filled at once (every hardware thread; the result does not depend on
 it); max_hole_pixels, larger holes left (0: no limit); keep_border, leave holes touching the
 border; reach (pixels); discontinuity, relative depth jump between surfaces; trend, 'none',
 'plane' or 'quadric'; trend_ring and margin (pixels); radius (pixels, telea and ns);
@@ -345,6 +377,9 @@ mask. Raises ValueError on an unknown back-end or a bad array.)");
              R"(Reads a depth image: 16-bit PNG or TIFF as H×W uint16 (millimetres), float TIFF or
 EXR as H×W float32 (metres). Raises OSError when the file cannot be read, ValueError when it is
 not such an image.)");
+  module.def("read_color", &read_color, py::arg("path"),
+             R"(Reads the colour image that guides fill_depth: PNG, TIFF or JPEG, as H×W×3 uint8
+(BGR, as OpenCV) or H×W uint8 (grey). Raises OSError or ValueError, as read_depth.)");
   module.def("write_depth", &write_depth, py::arg("depth"), py::arg("path"),
              R"(Writes a depth image atomically, in the format of the extension: uint16 to .png or
 .tif/.tiff, float32 to .tif/.tiff or .exr. Raises ValueError or OSError.)");

@@ -1,6 +1,6 @@
 """rangefill: the holes of 3D scans and depth maps filled by inpainting (the C++ library).
 
-Depth maps: fill_depth, inpaint, backends, read_depth, write_depth.
+Depth maps: fill_depth, inpaint, backends, read_depth, read_color, write_depth.
 Meshes: Mesh, read_mesh, write_mesh, repair, holes.
 Errors: ValueError (invalid input), OSError (files), ProcessingError (a well-formed input that
 could not be processed), each with the one-line message of the command-line tool.
@@ -15,6 +15,7 @@ from ._rangefill import (
     fill_depth,
     holes,
     inpaint,
+    read_color,
     read_depth,
     read_mesh,
     repair,
@@ -29,6 +30,7 @@ __all__ = [
     "fill_depth",
     "holes",
     "inpaint",
+    "read_color",
     "read_depth",
     "read_mesh",
     "repair",

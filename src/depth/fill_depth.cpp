@@ -119,6 +119,38 @@ cv::Mat distance_through(const cv::Mat& hole, const cv::Mat& seeds) {
   return distance;
 }
 
+// The hole pixels that see occluding rim pixels first along more than half of the 8 directions
+// (through the hole) that meet the rim: inside an occluder's silhouette continued across the
+// hole. A sensor's shadow beside an occluder sees it on one side only. `rim`: CV_8U, 1 at rim
+// pixels that occlude, 2 at the others, 0 elsewhere.
+cv::Mat inside_silhouette(const cv::Mat& hole, const cv::Mat& rim) {
+  cv::Mat occluders(hole.size(), CV_8U, cv::Scalar(0)), seen = occluders.clone();
+  cv::Mat first(hole.size(), CV_8U);  // the kind of the first rim pixel along one direction
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      if (dx == 0 && dy == 0) continue;
+      // Rows and columns in the order that visits p + (dx, dy) before p.
+      for (int i = 0; i < hole.rows; ++i) {
+        const int row = dy > 0 ? hole.rows - 1 - i : i;
+        for (int j = 0; j < hole.cols; ++j) {
+          const int col = dx > 0 ? hole.cols - 1 - j : j;
+          if (!hole.at<std::uint8_t>(row, col)) continue;
+          const cv::Point next(col + dx, row + dy);
+          std::uint8_t kind = 0;
+          if (next.x >= 0 && next.y >= 0 && next.x < hole.cols && next.y < hole.rows) {
+            kind = hole.at<std::uint8_t>(next) ? first.at<std::uint8_t>(next)
+                                               : rim.at<std::uint8_t>(next);
+          }
+          first.at<std::uint8_t>(row, col) = kind;
+          occluders.at<std::uint8_t>(row, col) += kind == 1;
+          seen.at<std::uint8_t>(row, col) += kind != 0;
+        }
+      }
+    }
+  }
+  return hole & (2 * occluders > seen);
+}
+
 // How much nearer (pixels) the occluding rim pixels than the others a hole pixel must be to lie on
 // the near side: the background goes on behind an occluder, a sensor's shadow beside it is on the
 // far side. Chosen on the depth kit's tuning frames (docs/depth-maps.md).
@@ -176,7 +208,7 @@ HoleSides hole_sides(const cv::Mat& z, const cv::Mat& data, const cv::Mat& hole,
   }
   const cv::Mat to_front = distance_through(hole, front_rim);
   const cv::Mat to_back = distance_through(hole, back_rim);
-  sides.front = hole & (to_front + kNearSideMargin < to_back);
+  sides.front = (to_front + kNearSideMargin < to_back) & inside_silhouette(hole, front_rim / 255 + back_rim / 128);
   if (cv::countNonZero(back_source) == 0) sides.front = hole;
   if (cv::countNonZero(front_source) == 0) sides.front.setTo(0);
   sides.back = hole & ~sides.front;

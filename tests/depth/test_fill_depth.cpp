@@ -33,7 +33,7 @@ TEST(FillDepth, RestoresATiltedPlaneWithEveryBackend) {
   const cv::Mat hole = disc({300, 200}, 15) | disc({500, 400}, 4);
   cv::Mat input = truth.clone();
   input.setTo(0, hole);
-  for (const std::string& name : inpainter_names()) {
+  for (const std::string& name : depth_filler_names()) {
     for (TrendKind trend : {TrendKind::none, TrendKind::plane}) {
       DepthFillOptions options;
       options.inpainter = name;
@@ -62,12 +62,13 @@ TEST(FillDepth, RestoresASphereWithEveryBackend) {
   cv::Mat truth_mm, input_mm;
   truth.convertTo(truth_mm, CV_16U, 1000);
   input.convertTo(input_mm, CV_16U, 1000);
-  for (const std::string& name : inpainter_names()) {
+  for (const std::string& name : depth_filler_names()) {
     for (TrendKind trend : {TrendKind::none, TrendKind::quadric}) {
       DepthFillOptions options;
       options.inpainter = name;
       options.trend = trend;
-      const double tolerance = trend == TrendKind::quadric ? 1e-3 : 6e-3;
+      // Lines read no trend.
+      const double tolerance = trend == TrendKind::quadric && name != kAlongLines ? 1e-3 : 6e-3;
       cv::Mat filled, filled_mm;
       fill_depth(input, cv::noArray(), filled, options);
       EXPECT_LT(max_error(filled, truth, hole), tolerance) << name << " " << trend_name(trend);
@@ -79,8 +80,9 @@ TEST(FillDepth, RestoresASphereWithEveryBackend) {
 }
 
 // A near plane (1 m, left of column 320) in front of a far one (2 m). A band on the far side of the
-// edge, as a sensor shadow, and a square across the edge are both filled at the far depth (the
-// background goes on behind the near plane), not bridged by a ramp.
+// edge, as a sensor shadow, is filled at the far depth (the background goes on behind the near
+// plane), not bridged by a ramp; a square across the edge takes each plane on its side, the near
+// one ending within kNearSideMargin and a little of the silhouette.
 TEST(FillDepth, DoesNotBridgeADiscontinuity) {
   cv::Mat truth(kSize, CV_32F, cv::Scalar(2.0f));
   truth.colRange(0, 320).setTo(1.0f);
@@ -90,14 +92,18 @@ TEST(FillDepth, DoesNotBridgeADiscontinuity) {
   cv::Mat input = truth.clone();
   input.setTo(0, shadow | square);
   const cv::Mat far_depth(kSize, CV_32F, cv::Scalar(2.0f));
-  for (const std::string& name : inpainter_names()) {
+  for (const std::string& name : depth_filler_names()) {
     DepthFillOptions options;
     options.inpainter = name;
     cv::Mat filled;
     const DepthFillStats stats = fill_depth(input, cv::noArray(), filled, options);
     EXPECT_EQ(stats.filled, 2) << name;
     EXPECT_EQ(stats.at_edge, 2) << name;
-    EXPECT_LT(max_error(filled, far_depth, shadow | square), 1e-5) << name;
+    cv::Mat far_of_square = square.clone(), near_of_square = square.clone();
+    far_of_square.colRange(0, 320).setTo(0);
+    near_of_square.colRange(308, 640).setTo(0);
+    EXPECT_LT(max_error(filled, far_depth, shadow | far_of_square), 1e-5) << name;
+    EXPECT_LT(max_error(filled, truth, near_of_square), 1e-5) << name;
   }
   // Without the rule (a threshold no jump reaches) the band is a ramp.
   DepthFillOptions smooth;
@@ -175,7 +181,7 @@ TEST(FillDepth, SameResultAtAnyThreadCount) {
     for (int col = 150; col < 490; col += 17) hole(cv::Rect(col, row, 15, 2)).setTo(255);
   }
   input.setTo(0, hole);
-  for (const char* name : {"foe", "ns"}) {
+  for (const char* name : {kAlongLines, "foe", "ns"}) {
     DepthFillOptions options;
     options.inpainter = name;
     cv::Mat one, several;
@@ -279,6 +285,7 @@ TEST(FillDepth, PixelsBeyondReachTakeTheNearestDepth) {
   }
   input(cv::Rect(320, 0, 320, 480)).setTo(0);
   DepthFillOptions options;
+  options.inpainter = "harmonic";  // the back-ends read reach
   options.reach = 4;
   cv::Mat filled;
   fill_depth(input, cv::noArray(), filled, options);
@@ -291,6 +298,76 @@ TEST(FillDepth, PixelsBeyondReachTakeTheNearestDepth) {
   double lowest = 0, highest = 0;
   cv::minMaxLoc(filled.col(639), &lowest, &highest);
   EXPECT_LT(highest - lowest, 40);  // the wave spans 400 mm at column 319
+}
+
+// A hole across a near object's straight silhouette: the object goes on across it, and the wall
+// behind fills the rest; the near side ends short of the silhouette continued, by at most
+// kNearSideMargin and a little (the far side is preferred, as for a sensor's shadow).
+TEST(FillDepth, ANearSurfaceGoesOnAcrossTheSilhouetteAHoleCrosses) {
+  cv::Mat truth(kSize, CV_32F, cv::Scalar(2.0f));
+  truth.colRange(0, 320).setTo(1.0f);
+  const cv::Mat hole = disc({320, 240}, 30);
+  cv::Mat input = truth.clone();
+  input.setTo(0, hole);
+  cv::Mat filled;
+  const DepthFillStats stats = fill_depth(input, cv::noArray(), filled);
+  EXPECT_EQ(stats.at_edge, 1);
+  cv::Mat far_from_silhouette = hole.clone();
+  far_from_silhouette.colRange(305, 321).setTo(0);
+  EXPECT_LT(max_error(filled, truth, far_from_silhouette), 1e-5);
+}
+
+// A colour image parts what depth alone cannot: a picture 3 % in front of its wall (one surface
+// under the 5 % discontinuity) keeps its depth up to its colour edge, where without colour the
+// fill blends the two across the hole.
+TEST(FillDepth, AColourEdgePartsTheGuessesOfOneSurface) {
+  cv::Mat truth(kSize, CV_32F, cv::Scalar(2.0f));
+  cv::Mat color(kSize, CV_8UC3, cv::Scalar(200, 200, 200));
+  truth(cv::Rect(200, 150, 120, 180)).setTo(1.94f);
+  color(cv::Rect(200, 150, 120, 180)).setTo(cv::Scalar(40, 60, 160));
+  const cv::Mat hole = disc({320, 240}, 20);
+  cv::Mat input = truth.clone();
+  input.setTo(0, hole);
+  cv::Mat plain, guided;
+  fill_depth(input, cv::noArray(), plain);
+  DepthFillOptions options;
+  options.color = color;
+  fill_depth(input, cv::noArray(), guided, options);
+  const double without = cv::norm(plain, truth, cv::NORM_L2, hole);
+  const double with = cv::norm(guided, truth, cv::NORM_L2, hole);
+  EXPECT_GT(without, 0.05);
+  EXPECT_LT(with, 0.5 * without);
+  EXPECT_EQ(cv::norm(guided, input, cv::NORM_INF, hole == 0), 0);
+  // Grey guides as the same colours in three channels do.
+  cv::Mat grey, from_grey;
+  cv::cvtColor(color, grey, cv::COLOR_BGR2GRAY);
+  cv::Mat grey_three;
+  cv::cvtColor(grey, grey_three, cv::COLOR_GRAY2BGR);
+  options.color = grey;
+  fill_depth(input, cv::noArray(), from_grey, options);
+  options.color = grey_three;
+  fill_depth(input, cv::noArray(), guided, options);
+  EXPECT_EQ(cv::norm(from_grey, guided, cv::NORM_INF), 0);
+}
+
+// A colour image of another size or type is refused, saying which.
+TEST(FillDepth, RefusesAColourImageThatDoesNotMatch) {
+  const cv::Mat depth(48, 64, CV_16U, cv::Scalar(1000));
+  cv::Mat out;
+  for (const auto& [color, message] :
+       {std::pair{cv::Mat(48, 60, CV_8UC3, cv::Scalar(0)),
+                  "fill_depth: the colour image is 60x48 but the depth is 64x48"},
+        {cv::Mat(48, 64, CV_16UC3, cv::Scalar(0)),
+         "fill_depth: the colour image must be 8-bit colour or grey, not CV_16UC3"}}) {
+    DepthFillOptions options;
+    options.color = color;
+    try {
+      fill_depth(depth, cv::noArray(), out, options);
+      ADD_FAILURE() << "no exception: " << message;
+    } catch (const InvalidInput& error) {
+      EXPECT_STREQ(error.what(), message);
+    }
+  }
 }
 
 // Wrong types and a mask of another size are refused with a one-line message saying what is wrong.
@@ -344,7 +421,7 @@ TEST(FillDepth, BeatsCvInpaintOnSensorFrames) {
       error.convertTo(error, CV_64F);
       squared[method] += cv::norm(error, cv::NORM_L2SQR, punched);
     };
-    for (const std::string& backend : inpainter_names()) {
+    for (const std::string& backend : depth_filler_names()) {
       DepthFillOptions options;
       options.inpainter = backend;
       cv::Mat filled;
@@ -360,7 +437,7 @@ TEST(FillDepth, BeatsCvInpaintOnSensorFrames) {
   }
   const double baseline = std::sqrt(std::min(squared["cv::inpaint 0"], squared["cv::inpaint 1"]) /
                                     static_cast<double>(pixels));
-  for (const std::string& backend : inpainter_names()) {
+  for (const std::string& backend : depth_filler_names()) {
     EXPECT_LT(std::sqrt(squared[backend] / static_cast<double>(pixels)), baseline) << backend;
   }
 }

@@ -86,6 +86,20 @@ def test_a_sensor_frame_is_filled_as_the_command_fills_it(cli, shared, tmp_path)
     assert (filled > 0).all()
 
 
+def test_a_colour_guided_fill_is_the_commands_whatever_the_channel_order(cli, shared, tmp_path):
+    frame = shared / "depth-real" / "livingroom-00000.png"
+    colour_file = shared / "depth-real" / "color" / "livingroom-00000.jpg"
+    cli("depth", frame, "--color", colour_file, "-o", tmp_path / "filled.png")
+    depth, colour = rangefill.read_depth(frame), rangefill.read_color(colour_file)
+    assert colour.shape == depth.shape + (3,) and colour.dtype == np.uint8
+    filled, _ = rangefill.fill_depth(depth, color=colour)
+    assert np.array_equal(filled, rangefill.read_depth(tmp_path / "filled.png"))
+    assert np.array_equal(rangefill.fill_depth(depth, color=colour[:, :, ::-1])[0], filled)
+    assert not np.array_equal(rangefill.fill_depth(depth)[0], filled)
+    with pytest.raises(ValueError, match="colour image is 320x480"):
+        rangefill.fill_depth(depth, color=colour[:, :320])
+
+
 def test_depth_files_round_trip(tmp_path):
     millimetres = plane_depth()
     metres = millimetres.astype(np.float32) / 1000
