@@ -6,7 +6,8 @@
 //   temporary directory), binary and ASCII, by read_mesh, beside read_file of the same bytes (the
 //   file system's floor).
 // - filling a depth frame (../shared/data/depth-real/livingroom-00000.png, VGA, 40 071 invalid
-//   pixels; skipped without ../shared): fill_depth by default and with `fast`, beside
+//   pixels; skipped without ../shared): fill_depth by default, with its colour image and with
+//   `fast`, beside
 //   cv::inpaint (Navier-Stokes, radius 3) of the same pixels, all on one thread, with the rangefill
 //   command's malloc settings.
 // - repairing that grid, and one of 2236 × 2236 (10 M faces), with 10 holes punched into it
@@ -162,6 +163,14 @@ void Depth_FillDefault(benchmark::State& state) {
   fill_frame(state, {});
 }
 
+void Depth_FillDefaultColor(benchmark::State& state) {
+  const fs::path path = RANGEFILL_SHARED_DIR "/data/depth-real/color/livingroom-00000.jpg";
+  if (!fs::exists(path)) return state.SkipWithError("no ../shared/data/depth-real/color");
+  rangefill::DepthFillOptions options;
+  options.color = rangefill::read_color_image(path);
+  fill_frame(state, options);
+}
+
 void Depth_FillFast(benchmark::State& state) {
   rangefill::DepthFillOptions options;
   options.fast = true;
@@ -209,6 +218,7 @@ BENCHMARK(Read_AsciiBytes)->Unit(benchmark::kMillisecond);
 BENCHMARK(Read_AsciiPly)->Unit(benchmark::kMillisecond);
 BENCHMARK(Depth_Inpaint)->Unit(benchmark::kMillisecond);
 BENCHMARK(Depth_FillDefault)->Unit(benchmark::kMillisecond);
+BENCHMARK(Depth_FillDefaultColor)->Unit(benchmark::kMillisecond);
 BENCHMARK(Depth_FillFast)->Unit(benchmark::kMillisecond);
 BENCHMARK(Repair_Rangefill)
     ->Arg(kGrid)
@@ -259,6 +269,7 @@ int main(int argc, char** argv) {
   ratio("read_mesh, 1 M faces, binary PLY", "Read_BinaryPly", "Read_BinaryBytes");
   ratio("read_mesh, 1 M faces, ASCII PLY", "Read_AsciiPly", "Read_AsciiBytes");
   ratio("fill_depth, VGA frame", "Depth_FillDefault", "Depth_Inpaint");
+  ratio("fill_depth with colour, VGA frame", "Depth_FillDefaultColor", "Depth_Inpaint");
   ratio("fill_depth fast, VGA frame", "Depth_FillFast", "Depth_Inpaint");
   ratio("repair, 1 M faces, 10 holes", "Repair_Rangefill/708", "Repair_CgalFair/708");
   ratio("repair, 10 M faces, 10 holes", "Repair_Rangefill/2236", "Repair_CgalFair/2236");

@@ -302,9 +302,10 @@ void add_depth_functions(py::module_& module) {
   module.def(
       "fill_depth",
       [](const py::array& image, const std::optional<py::array>& mask,
-         const std::optional<py::array>& color, const std::string& inpainter, bool fast, int threads, long long max_hole_pixels, bool keep_border, int reach,
-         double discontinuity, const std::string& trend, double trend_ring, int margin,
-         double radius, const std::string& foe_start, double foe_tolerance, int foe_iterations) {
+         const std::optional<py::array>& color, const std::string& inpainter, bool fast,
+         int threads, long long max_hole_pixels, bool keep_border, int reach, double discontinuity,
+         const std::string& trend, double trend_ring, int margin, double radius,
+         const std::string& foe_start, double foe_tolerance, int foe_iterations) {
         DepthFillOptions options;
         options.inpainter = inpainter;
         options.fast = fast;

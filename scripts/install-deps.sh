@@ -3,7 +3,7 @@
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config
-  libeigen3-dev libopencv-dev libpcl-dev libceres-dev libsuitesparse-dev
+  libeigen3-dev libopencv-dev libopencv-contrib-dev libpcl-dev libceres-dev libsuitesparse-dev
   libcgal-dev libgtest-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev zlib1g-dev libpng-dev libjpeg-dev libtiff-dev libopenexr-dev
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module (python/)

@@ -8,8 +8,8 @@
 #include <limits>
 #include <vector>
 
-#include "rangefill/core/parallel.h"
 #include "depth/color_guide.h"
+#include "rangefill/core/parallel.h"
 #include "rangefill/depth/depth_image.h"
 
 namespace rangefill {
@@ -30,14 +30,16 @@ constexpr int kLines = 4;
 // What guesses are made with, computed once: the discontinuity as a ratio of inverse depths, the
 // lines' steps, and the reciprocals 1 / n of step counts (no division for each of the pixels).
 struct GuessRules {
-  float ratio;  // 1 + discontinuity
+  float ratio;           // 1 + discontinuity
   const cv::Mat& color;  // CV_32FC3 or empty
   std::array<float, kLines> step_length = {1, 1, std::sqrt(2.0F), std::sqrt(2.0F)};
   std::array<float, kLines> per_squared_step = {1, 1, 0.5F, 0.5F};
   std::vector<float> reciprocal;
 
   GuessRules(double discontinuity, int longest_line, const cv::Mat& color)
-      : ratio(static_cast<float>(1 + discontinuity)), color(color), reciprocal(longest_line + 1, 0) {
+      : ratio(static_cast<float>(1 + discontinuity)),
+        color(color),
+        reciprocal(longest_line + 1, 0) {
     for (size_t n = 1; n < reciprocal.size(); ++n) reciprocal[n] = 1.0F / static_cast<float>(n);
   }
   // same_surface for inverse depths.

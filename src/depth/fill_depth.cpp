@@ -208,7 +208,8 @@ HoleSides hole_sides(const cv::Mat& z, const cv::Mat& data, const cv::Mat& hole,
   }
   const cv::Mat to_front = distance_through(hole, front_rim);
   const cv::Mat to_back = distance_through(hole, back_rim);
-  sides.front = (to_front + kNearSideMargin < to_back) & inside_silhouette(hole, front_rim / 255 + back_rim / 128);
+  sides.front = (to_front + kNearSideMargin < to_back) &
+                inside_silhouette(hole, front_rim / 255 + back_rim / 128);
   if (cv::countNonZero(back_source) == 0) sides.front = hole;
   if (cv::countNonZero(front_source) == 0) sides.front.setTo(0);
   sides.back = hole & ~sides.front;
@@ -345,8 +346,8 @@ HoleOutcome fill_depth_hole(const cv::Mat& z, const cv::Mat& data, const cv::Mat
     if (side_source.empty()) continue;
     cv::Mat side_fill;
     if (inpainter == nullptr) {
-      side_fill = fill_along_lines(z(window), side_source, side, options.discontinuity, 1,
-                                   window_color);
+      side_fill =
+          fill_along_lines(z(window), side_source, side, options.discontinuity, 1, window_color);
     } else {
       cv::Mat window_z = z(window), source = side_source.clone();
       if (options.reach > 0) extend_source_beyond_reach(window_z, source, options.reach);
@@ -390,8 +391,8 @@ cv::Mat holes_mask(const cv::Mat& labels, const std::vector<std::uint8_t>& chose
 // fill_depth with options.fast: the holes to fill (`all_holes`, but those left for their size)
 // at once by fill_along_lines.
 std::vector<HoleOutcome> fill_depth_along_lines(const cv::Mat& z, const cv::Mat& data,
-                                                const cv::Mat& color, const cv::Mat& labels, const cv::Mat& stats,
-                                                const cv::Mat& all_holes,
+                                                const cv::Mat& color, const cv::Mat& labels,
+                                                const cv::Mat& stats, const cv::Mat& all_holes,
                                                 const DepthFillOptions& options, cv::Mat& out) {
   std::vector<HoleOutcome> outcomes(std::max(0, stats.rows - 1));
   std::vector<std::uint8_t> to_fill_label(stats.rows, 0);
@@ -400,7 +401,8 @@ std::vector<HoleOutcome> fill_depth_along_lines(const cv::Mat& z, const cv::Mat&
     if (outcomes[i].kind == HoleOutcome::filled) to_fill_label[i + 1] = 255;
   }
   const cv::Mat to_fill = holes_mask(labels, to_fill_label, all_holes);
-  const cv::Mat fill = fill_along_lines(z, data, to_fill, options.discontinuity, options.threads, color);
+  const cv::Mat fill =
+      fill_along_lines(z, data, to_fill, options.discontinuity, options.threads, color);
   // A hole is filled whole or not at all (fill_along_lines fills a pixel's 8 neighbours in the
   // round after it): one without a fill had no data on any line through it.
   for (int row = 0; row < z.rows; ++row) {
@@ -482,8 +484,8 @@ DepthFillStats fill_depth(cv::InputArray depth_in, cv::InputArray mask_in, cv::O
     // run at once; outcomes (and a failure, the first in hole order) are taken in hole order.
     parallel_for(static_cast<int>(outcomes.size()), options.threads, [&](int i) {
       try {
-        outcomes[i] = fill_depth_hole(z, data, color, labels, stats, i + 1, inpainter.get(), options,
-                                      out);
+        outcomes[i] =
+            fill_depth_hole(z, data, color, labels, stats, i + 1, inpainter.get(), options, out);
       } catch (...) {
         failures[i] = std::current_exception();
       }

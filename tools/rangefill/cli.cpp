@@ -66,6 +66,15 @@ std::vector<std::string> split_list(const std::string& text) {
   return items;
 }
 
+std::filesystem::path color_image_of(const std::filesystem::path& dir,
+                                     const std::filesystem::path& frame) {
+  for (const char* extension : {".png", ".jpg", ".jpeg", ".tif", ".tiff"}) {
+    const std::filesystem::path candidate = dir / (frame.stem().string() + extension);
+    if (std::filesystem::exists(candidate)) return candidate;
+  }
+  return {};
+}
+
 std::vector<std::filesystem::path> files_from_arguments(
     const std::vector<std::string>& arguments,
     const std::function<bool(const std::filesystem::path&)>& wanted) {

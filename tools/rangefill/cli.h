@@ -35,6 +35,11 @@ std::vector<std::filesystem::path> files_from_arguments(
     const std::vector<std::string>& arguments,
     const std::function<bool(const std::filesystem::path&)>& wanted);
 
+/// The colour image of depth image `frame` in `dir`: the file of the same stem with an image
+/// extension (.png, .jpg, .jpeg, .tif, .tiff), empty if none.
+std::filesystem::path color_image_of(const std::filesystem::path& dir,
+                                     const std::filesystem::path& frame);
+
 /// files_from_arguments taking the mesh files (.ply, .obj, .off, .stl).
 std::vector<std::filesystem::path> mesh_files(const std::vector<std::string>& arguments);
 

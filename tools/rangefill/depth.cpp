@@ -73,10 +73,9 @@ FileFill fill_file(const FillInputs& inputs, const fs::path& output, const fs::p
     result.fill_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   } catch (const InvalidInput& error) {
-    throw InvalidInput(inputs.depth.string() +
-                       (inputs.mask.empty() ? "" : " with mask " + inputs.mask.string()) +
-                       (inputs.color.empty() ? "" : " and colour " + inputs.color.string()) +
-                       ": " + error.what());
+    throw InvalidInput(
+        inputs.depth.string() + (inputs.mask.empty() ? "" : " with mask " + inputs.mask.string()) +
+        (inputs.color.empty() ? "" : " and colour " + inputs.color.string()) + ": " + error.what());
   }
   write_depth_image(filled, output);
   if (!filled_mask.empty()) write_mask_image(stats.filled_mask, filled_mask);
@@ -121,16 +120,6 @@ int run_single(const DepthCommand& command) {
                 seconds, command.output.c_str());
   }
   return kOk;
-}
-
-// The colour image of depth image `frame` in `dir`: the file of the same stem with an image
-// extension, empty if none.
-fs::path color_image_of(const fs::path& dir, const fs::path& frame) {
-  for (const char* extension : {".png", ".jpg", ".jpeg", ".tif", ".tiff"}) {
-    const fs::path candidate = dir / (frame.stem().string() + extension);
-    if (fs::exists(candidate)) return candidate;
-  }
-  return {};
 }
 
 struct FileOutcome {
@@ -271,10 +260,10 @@ void add_depth_command(CLI::App& app, Runner& runner) {
          "for job arrays")
       ->capture_default_str();
   CLI::Option* inpainter =
-      sub->add_option("--inpainter", options.inpainter,
-                      std::string("How each side of a hole is filled: ") + kAlongLines +
-                          " (along rows, columns and diagonals) or a back-end: " +
-                          join(inpainter_names()))
+      sub->add_option(
+             "--inpainter", options.inpainter,
+             std::string("How each side of a hole is filled: ") + kAlongLines +
+                 " (along rows, columns and diagonals) or a back-end: " + join(inpainter_names()))
           ->capture_default_str()
           ->check(CLI::IsMember(depth_filler_names()));
   add_foe_inference_options(sub, options.inpainting);

@@ -1,5 +1,7 @@
 // rangefill depth-bench: sensor-like holes punched into depth frames (rendered from meshes, or
-// recorded by sensors), filled by fill_depth with each back-end and by plain cv::inpaint, measured.
+// recorded by sensors), filled by fill_depth along lines and with each back-end, by plain
+// cv::inpaint and, on sensor frames with a colour image (color/<stem>.* beside them), by fill_depth
+// guided by it and by OpenCV contrib's fast bilateral solver; measured.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -8,10 +10,12 @@
 #include <iostream>
 #include <map>
 
+#include <opencv2/imgproc.hpp>
 #include <opencv2/photo.hpp>
 
 #include "cli.h"
 #include "rangefill/depth/fill_depth.h"
+#include "rangefill/eval/depth_baselines.h"
 #include "rangefill/eval/punch.h"
 #include "rangefill/eval/render.h"
 #include "rangefill/eval/sensor_holes.h"
@@ -72,6 +76,7 @@ Scene make_scene(const Mesh& object, double azimuth) {
 struct Frame {
   std::string dataset, name;
   cv::Mat truth;  // CV_16UC1, millimetres
+  cv::Mat color;  // CV_8UC3, or empty: a sensor frame's colour image (its folder's color/)
 };
 
 // Errors and times of one method over a dataset.
@@ -106,7 +111,13 @@ std::vector<Frame> bench_frames(const DepthBenchCommand& command) {
   for (const fs::path& file : files_from_arguments(command.frames, is_depth_image_path)) {
     cv::Mat depth = read_depth_image(file);
     if (depth.type() == CV_32FC1) depth.convertTo(depth, CV_16U, 1000);  // NaN → 0
-    frames.push_back({"sensor", file.stem().string(), depth});
+    const fs::path color = color_image_of(file.parent_path() / "color", file);
+    cv::Mat color_image;
+    if (!color.empty()) {
+      color_image = read_color_image(color);
+      if (color_image.channels() == 1) cv::cvtColor(color_image, color_image, cv::COLOR_GRAY2BGR);
+    }
+    frames.push_back({"sensor", file.stem().string(), depth, color_image});
   }
   return frames;
 }
@@ -155,7 +166,9 @@ void print_dataset(const std::string& dataset, const std::map<std::string, Tally
   std::string best_backend, fastest_backend, best_baseline;
   double best_rmse = INFINITY, fastest_ms = INFINITY, baseline_rmse = INFINITY;
   for (size_t m = 0; m < methods.size(); ++m) {
-    const Tally& tally = by_method.at(methods[m]);
+    const auto found = by_method.find(methods[m]);
+    if (found == by_method.end()) continue;  // a colour method, and no frame had colour
+    const Tally& tally = found->second;
     const double rmse = std::sqrt(tally.squared / tally.pixels);
     const double ms = median(tally.milliseconds);
     std::printf("  %-40s %9.1f %9.1f %10.1f %9lld\n", methods[m].c_str(), rmse,
@@ -163,7 +176,7 @@ void print_dataset(const std::string& dataset, const std::map<std::string, Tally
     if (m < backend_count) {
       if (rmse < best_rmse) best_rmse = rmse, best_backend = methods[m];
       if (ms < fastest_ms) fastest_ms = ms, fastest_backend = methods[m];
-    } else if (rmse < baseline_rmse) {
+    } else if (methods[m].rfind("cv::inpaint", 0) == 0 && rmse < baseline_rmse) {
       baseline_rmse = rmse, best_baseline = methods[m];
     }
   }
@@ -176,8 +189,8 @@ void print_dataset(const std::string& dataset, const std::map<std::string, Tally
 // The back-ends of --inpainters (all when empty); UsageError on an unknown one.
 std::vector<std::string> bench_backends(const DepthBenchCommand& command) {
   std::vector<std::string> backends = split_list(command.inpainters);
-  if (backends.empty()) backends = inpainter_names();
-  const std::vector<std::string> known = inpainter_names();
+  if (backends.empty()) backends = depth_filler_names();
+  const std::vector<std::string> known = depth_filler_names();
   for (const std::string& name : backends) {
     if (std::find(known.begin(), known.end(), name) == known.end()) {
       throw UsageError("--inpainters: unknown back-end '" + name + "' (known: " + join(known) +
@@ -199,6 +212,10 @@ int run_depth_bench(const DepthBenchCommand& command) {
   std::vector<std::string> methods;
   for (const std::string& name : backends) methods.push_back("fill_depth " + name);
   for (const CvInpaint& baseline : kCvInpaints) methods.push_back(baseline.name);
+  // On the frames with a colour image: the default with it, and OpenCV contrib's solver.
+  const size_t first_colour_method = methods.size();
+  methods.push_back("fill_depth, colour-guided");
+  methods.push_back("fast bilateral solver, colour-guided");
 
   std::map<std::string, std::map<std::string, Tally>> tallies;  // dataset → method → tally
   std::map<std::string, int> frame_counts;
@@ -232,12 +249,18 @@ int run_depth_bench(const DepthBenchCommand& command) {
         write_depth_image(input, stem + "-input.png");
       }
       for (size_t m = 0; m < methods.size(); ++m) {
+        if (m >= first_colour_method && frame.color.empty()) continue;
         cv::Mat output;
         DepthFillOptions options = fill;
         if (m < backends.size()) options.inpainter = backends[m];
         const double ms = milliseconds_of([&] {
           if (m < backends.size()) {
             fill_depth(input, punched, output, options);
+          } else if (m == first_colour_method) {
+            options.color = frame.color;
+            fill_depth(input, punched, output, options);
+          } else if (m > first_colour_method) {
+            output = fill_depth_fast_bilateral_solver(input, frame.color, punched);
           } else {
             const CvInpaint& baseline = kCvInpaints[m - backends.size()];
             cv::inpaint(input, baseline.mask_all_invalid ? all_invalid : punched, output,
