@@ -16,6 +16,7 @@
 #include <zlib.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "rangefill/depth/fill_depth.h"
 #include "rangefill/eval/metrics.h"
@@ -308,6 +309,53 @@ TEST(Cli, DepthFillsOneImage) {
   EXPECT_EQ(bad.err,
             "rangefill: " + (dir / "bad.png").string() + ": not a PNG, TIFF or EXR image\n");
   EXPECT_FALSE(fs::exists(dir / "b.png"));
+  fs::remove_all(dir);
+}
+
+// --color takes a JPEG or PNG colour image of the depth's size, and gives fill_depth's bytes with
+// it; one of another size is refused naming both files; --batch finds each frame's colour image
+// by its stem in --color-dir and skips a frame without one.
+TEST(Cli, DepthTakesAColourImage) {
+  const fs::path dir = testing::temporary_directory("cli-depth-colour");
+  cv::Mat depth(48, 64, CV_16U, cv::Scalar(2000));
+  depth.colRange(0, 30).setTo(1940);  // a picture on the wall, one surface for depth alone
+  cv::Mat colour(48, 64, CV_8UC3, cv::Scalar(200, 200, 200));
+  colour.colRange(0, 30).setTo(cv::Scalar(40, 60, 160));
+  cv::circle(depth, {30, 24}, 8, cv::Scalar(0), cv::FILLED);
+  write_depth_image(depth, dir / "in.png");
+  ASSERT_TRUE(cv::imwrite((dir / "in.jpg").string(), colour, {cv::IMWRITE_JPEG_QUALITY, 100}));
+  const Outcome guided = run("depth " + (dir / "in.png").string() + " --color " +
+                             (dir / "in.jpg").string() + " -o " + (dir / "out.png").string());
+  ASSERT_EQ(guided.exit_code, 0) << guided.err;
+  DepthFillOptions options;
+  options.color = read_color_image(dir / "in.jpg");
+  cv::Mat expected;
+  fill_depth(depth, cv::noArray(), expected, options);
+  EXPECT_EQ(cv::norm(read_depth_image(dir / "out.png"), expected, cv::NORM_INF), 0);
+  cv::Mat plain;
+  fill_depth(depth, cv::noArray(), plain);
+  EXPECT_GT(cv::norm(plain, expected, cv::NORM_INF), 0);
+
+  ASSERT_TRUE(cv::imwrite((dir / "small.png").string(), colour.colRange(0, 32)));
+  const Outcome small = run("depth " + (dir / "in.png").string() + " --color " +
+                            (dir / "small.png").string() + " -o " + (dir / "s.png").string());
+  EXPECT_EQ(small.exit_code, 3);
+  EXPECT_EQ(small.err, "rangefill: " + (dir / "in.png").string() + " and colour " +
+                           (dir / "small.png").string() +
+                           ": fill_depth: the colour image is 32x48 but the depth is 64x48\n");
+  EXPECT_FALSE(fs::exists(dir / "s.png"));
+
+  fs::create_directories(dir / "frames");
+  fs::create_directories(dir / "colour");
+  write_depth_image(depth, dir / "frames" / "a.png");
+  write_depth_image(depth, dir / "frames" / "b.png");
+  fs::copy_file(dir / "in.jpg", dir / "colour" / "a.jpg");
+  const Outcome batch = run("depth --batch " + (dir / "frames").string() + " --out-dir " +
+                            (dir / "out").string() + " --color-dir " + (dir / "colour").string());
+  EXPECT_EQ(batch.exit_code, 5) << batch.err;
+  EXPECT_EQ(cv::norm(read_depth_image(dir / "out" / "a.png"), expected, cv::NORM_INF), 0);
+  EXPECT_FALSE(fs::exists(dir / "out" / "b.png"));
+  EXPECT_NE(batch.err.find("b.png: no colour image"), std::string::npos) << batch.err;
   fs::remove_all(dir);
 }
 

@@ -26,12 +26,11 @@ inline const char* const kAlongLines = "lines";
 std::vector<std::string> depth_filler_names();
 
 struct DepthFillOptions {
-  /// Fill along lines instead of a back-end per hole: each pixel interpolated in inverse depth
-  /// between the valid pixels it sees along its row, column and diagonals, the far surface
-  /// preferred (the occlusion rule of step 2 below, without step 1's analysis and among the
-  /// valid pixels nearest the pixel). 4–10 ms a VGA frame on one thread; the back-ends are more
-  /// accurate at depth edges (README, Depth maps). Reads discontinuity, threads (bands of rows),
-  /// max_hole_pixels and keep_border of the options below.
+  /// Fill every hole at once along lines, without steps 1–2 below hole by hole: each pixel
+  /// interpolated in inverse depth between the valid pixels it sees along its row, column and
+  /// diagonals, the far surface preferred. A few ms a VGA frame; less accurate at depth edges
+  /// (docs/depth-maps.md). Reads discontinuity, threads (bands of rows), color, max_hole_pixels
+  /// and keep_border of the options below.
   bool fast = false;
   /// How each side of a hole is filled from its source (step 3 below): kAlongLines, or a name of
   /// inpainter_names() for that back-end (slower, and no more accurate on the depth kit:
@@ -52,8 +51,8 @@ struct DepthFillOptions {
   TrendKind trend = TrendKind::none;
   double trend_ring = 3;
   int margin = 5;  // pixels around each hole given to the back-end (telea and ns read `radius`)
-  /// Pixels farther than this from every pixel a hole is filled from take the depth of the
-  /// nearest such pixel; the back-end restores the band within. 0: no limit.
+  /// With a back-end: pixels farther than this from every pixel a hole is filled from take the
+  /// depth of the nearest such pixel; the back-end restores the band within. 0: no limit.
   int reach = 32;
 };
 
@@ -79,7 +78,7 @@ struct DepthFillStats {
   }
 };
 
-/// Fills the holes of a depth map with an inpainting back-end, in the idiom of cv::inpaint.
+/// Fills the holes of a depth map, in the idiom of cv::inpaint.
 ///
 /// `depth`: CV_16UC1 (millimetres) or CV_32FC1 (metres). `invalid_mask`: the pixels to fill,
 /// CV_8UC1 of the same size, non-zero to fill (whatever their depth); empty (cv::noArray()) takes
@@ -101,17 +100,22 @@ struct DepthFillStats {
 ///     inverse depth fitted to its neighbours within 2 pixels on its surface). Then p occludes: it
 ///     is on the near side of a depth edge the hole hides. A steep continuous surface, such as a
 ///     floor at a grazing angle, continues to p and makes no edge.
-///  2. Discontinuity rule: the background goes on behind an occluder, the occluder does not go on
-///     into the hole. The hole is filled from the valid pixels whose nearest rim pixel does not
-///     occlude and lies on their surface; occluding rim pixels and the occluder behind them are not
-///     used. So a sensor shadow (a band between a near object and the background) is filled at the
-///     background's depth, never by a ramp from near to far; so is a hole across an object's
-///     silhouette, near part included, and a thin object crossing a hole is cut. A hole on a near
-///     surface that reaches its silhouette keeps the rim pixels that see their own surface across.
-///  3. The source pixels go to inverse depth 1/z, on which a plane of the scene is linear in the
-///     pixel, normalised onto [0, 1] over the source (as eq. 7–8 do for range images), minus the
-///     trend if any; the back-end restores the hole with every other pixel of the window masked;
-///     the fill is clamped to the source's range widened by half on either side.
+///  2. Sides. The background goes on behind an occluder; the occluder goes on into the hole up to
+///     its silhouette continued. A hole pixel is on the near side when it sees occluding rim pixels
+///     first along more than half of the 8 directions that meet the rim (inside the silhouette
+///     continued) and is nearer them than the other rim pixels, through the hole, by more than 8
+///     pixels; every other pixel is on the far side. Each valid pixel of the window belongs to the
+///     side of its nearest rim pixel, when on that pixel's surface: each side is filled from its
+///     own. So a sensor shadow (a band between a near object and the background) is filled at the
+///     background's depth, never by a ramp from near to far, and a hole across a silhouette is
+///     parted near it; a side with no valid pixel of its own gives its pixels to the other.
+///  3. Each side is filled along lines (inpainter kAlongLines, the default: fill_along_lines over
+///     the side's source pixels, guesses weighted by their colour affinity to the pixel when a
+///     colour image is given), or by a back-end: the source pixels go to inverse depth 1/z, on
+///     which a plane of the scene is linear in the pixel, normalised onto [0, 1] over the source
+///     (as eq. 7–8 do for range images), minus the trend if any; the back-end restores the side
+///     with every other pixel of the window masked; the fill is clamped to the source's range
+///     widened by half on either side.
 DepthFillStats fill_depth(cv::InputArray depth, cv::InputArray invalid_mask, cv::OutputArray filled,
                           const DepthFillOptions& options = {});
 
