@@ -154,7 +154,7 @@ cv::Mat inside_silhouette(const cv::Mat& hole, const cv::Mat& rim) {
 // How much nearer (pixels) the occluding rim pixels than the others a hole pixel must be to lie on
 // the near side: the background goes on behind an occluder, a sensor's shadow beside it is on the
 // far side. Chosen on the depth kit's tuning frames (docs/depth-maps.md).
-constexpr float kNearSideMargin = 8;
+constexpr float kNearSideMargin = 6;
 
 // Steps 1–2 of fill_depth for a hole's window: the hole's pixels on the far and the near side of
 // the occluding edges its rim sees, and the valid pixels each side is filled from.

@@ -103,7 +103,7 @@ struct DepthFillStats {
 ///  2. Sides. The background goes on behind an occluder; the occluder goes on into the hole up to
 ///     its silhouette continued. A hole pixel is on the near side when it sees occluding rim pixels
 ///     first along more than half of the 8 directions that meet the rim (inside the silhouette
-///     continued) and is nearer them than the other rim pixels, through the hole, by more than 8
+///     continued) and is nearer them than the other rim pixels, through the hole, by more than 6
 ///     pixels; every other pixel is on the far side. Each valid pixel of the window belongs to the
 ///     side of its nearest rim pixel, when on that pixel's surface: each side is filled from its
 ///     own. So a sensor shadow (a band between a near object and the background) is filled at the
