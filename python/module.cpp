@@ -303,13 +303,14 @@ void add_depth_functions(py::module_& module) {
       "fill_depth",
       [](const py::array& image, const std::optional<py::array>& mask,
          const std::optional<py::array>& color, const std::string& inpainter, bool fast,
-         int threads, long long max_hole_pixels, bool keep_border, int reach, double discontinuity,
-         const std::string& trend, double trend_ring, int margin, double radius,
-         const std::string& foe_start, double foe_tolerance, int foe_iterations) {
+         int threads, long long backend_max_pixels, long long max_hole_pixels, bool keep_border,
+         int reach, double discontinuity, const std::string& trend, double trend_ring, int margin,
+         double radius, const std::string& foe_start, double foe_tolerance, int foe_iterations) {
         DepthFillOptions options;
         options.inpainter = inpainter;
         options.fast = fast;
         options.threads = threads;
+        options.backend_max_pixels = backend_max_pixels;
         options.max_hole_pixels = max_hole_pixels;
         options.keep_border = keep_border;
         options.reach = reach;
@@ -323,7 +324,8 @@ void add_depth_functions(py::module_& module) {
       },
       py::arg("depth"), py::arg("mask") = py::none(), py::kw_only(), py::arg("color") = py::none(),
       py::arg("inpainter") = depth.inpainter, py::arg("fast") = depth.fast,
-      py::arg("threads") = depth.threads, py::arg("max_hole_pixels") = depth.max_hole_pixels,
+      py::arg("threads") = depth.threads, py::arg("backend_max_pixels") = depth.backend_max_pixels,
+      py::arg("max_hole_pixels") = depth.max_hole_pixels,
       py::arg("keep_border") = depth.keep_border, py::arg("reach") = depth.reach,
       py::arg("discontinuity") = depth.discontinuity, py::arg("trend") = trend_name(depth.trend),
       py::arg("trend_ring") = depth.trend_ring, py::arg("margin") = depth.margin,
@@ -336,8 +338,9 @@ depth: H×W uint16 (millimetres, 0 invalid) or float32 (metres, 0 or NaN invalid
 mask: H×W bool or uint8, the pixels to fill (non-zero); None fills every invalid pixel.
 color: H×W×3 uint8 (RGB or BGR) or H×W uint8 grey, registered to the depth, or None: `rangefill
 depth --color`.
-The options and their defaults are `rangefill depth`'s (docs/depth-maps.md): inpainter, 'lines'
-or a back-end (backends()); fast, fill along lines without looking for occluding edges hole by
+The options and their defaults are `rangefill depth`'s (docs/depth-maps.md): inpainter, the
+back-end (backends()) for holes of up to backend_max_pixels, larger ones along lines, or 'lines'
+for every hole; fast, fill along lines without looking for occluding edges hole by
 hole (a few ms a VGA frame); threads, holes filled at once (every hardware thread; the result does not depend on
 it); max_hole_pixels, larger holes left (0: no limit); keep_border, leave holes touching the
 border; reach (pixels); discontinuity, relative depth jump between surfaces; trend, 'none',

@@ -39,9 +39,10 @@ def fill_depth(
     mask: _Mask | None = None,
     *,
     color: npt.NDArray[np.uint8] | None = None,  # H×W×3 (RGB or BGR) or H×W grey
-    inpainter: str = "lines",
+    inpainter: str = "harmonic",
     fast: bool = False,
     threads: int = ...,  # every hardware thread
+    backend_max_pixels: int = 2000,
     max_hole_pixels: int = 0,
     keep_border: bool = False,
     reach: int = 32,

@@ -321,7 +321,8 @@ void write_fill(cv::Mat& out, cv::Point p, float metres) {
 
 // Fills hole `label` of `labels` (connectedComponentsWithStats' labels and `stats`) into `out`,
 // the output image (of the depth's type), at the hole's pixels only: each side of the hole
-// (hole_sides) from its own source, along lines or by the back-end (null: along lines).
+// (hole_sides) from its own source, by the back-end if the hole is small enough for it
+// (options.backend_max_pixels), else along lines (always with a null back-end).
 HoleOutcome fill_depth_hole(const cv::Mat& z, const cv::Mat& data, const cv::Mat& color,
                             const cv::Mat& labels, const cv::Mat& stats, int label,
                             const Inpainter* inpainter, const DepthFillOptions& options,
@@ -340,18 +341,21 @@ HoleOutcome fill_depth_hole(const cv::Mat& z, const cv::Mat& data, const cv::Mat
     return outcome;
   }
   outcome.at_edge = sides.at_edge;
+  const Inpainter* backend =
+      options.backend_max_pixels == 0 || outcome.pixels <= options.backend_max_pixels ? inpainter
+                                                                                      : nullptr;
   cv::Mat fill(window.size(), CV_32F, cv::Scalar(0));
   for (const auto& [side, side_source] :
        {std::pair{sides.back, sides.back_source}, {sides.front, sides.front_source}}) {
     if (side_source.empty()) continue;
     cv::Mat side_fill;
-    if (inpainter == nullptr) {
+    if (backend == nullptr) {
       side_fill =
           fill_along_lines(z(window), side_source, side, options.discontinuity, 1, window_color);
     } else {
       cv::Mat window_z = z(window), source = side_source.clone();
       if (options.reach > 0) extend_source_beyond_reach(window_z, source, options.reach);
-      side_fill = fill_from_source(window_z, side, source, *inpainter, options);
+      side_fill = fill_from_source(window_z, side, source, *backend, options);
     }
     side_fill.copyTo(fill, side);
   }
@@ -459,10 +463,10 @@ DepthFillStats fill_depth(cv::InputArray depth_in, cv::InputArray mask_in, cv::O
     data = (z > 0) & (to_fill == 0);
   }
   if (!(options.discontinuity > 0) || options.margin < 1 || options.max_hole_pixels < 0 ||
-      options.threads < 1) {
+      options.backend_max_pixels < 0 || options.threads < 1) {
     throw InvalidInput(
         "fill_depth: discontinuity must be positive, margin and threads at least 1 and "
-        "max_hole_pixels not negative");
+        "max_hole_pixels and backend_max_pixels not negative");
   }
   const cv::Mat color = guide_color(options.color, depth.size(), "fill_depth");
   const std::unique_ptr<Inpainter> inpainter =

@@ -286,6 +286,7 @@ TEST(FillDepth, PixelsBeyondReachTakeTheNearestDepth) {
   input(cv::Rect(320, 0, 320, 480)).setTo(0);
   DepthFillOptions options;
   options.inpainter = "harmonic";  // the back-ends read reach
+  options.backend_max_pixels = 0;  // this hole is larger than the default's
   options.reach = 4;
   cv::Mat filled;
   fill_depth(input, cv::noArray(), filled, options);
@@ -329,8 +330,9 @@ TEST(FillDepth, AColourEdgePartsTheGuessesOfOneSurface) {
   cv::Mat input = truth.clone();
   input.setTo(0, hole);
   cv::Mat plain, guided;
-  fill_depth(input, cv::noArray(), plain);
   DepthFillOptions options;
+  options.inpainter = kAlongLines;  // colour guides the lines
+  fill_depth(input, cv::noArray(), plain, options);
   options.color = color;
   fill_depth(input, cv::noArray(), guided, options);
   const double without = cv::norm(plain, truth, cv::NORM_L2, hole);

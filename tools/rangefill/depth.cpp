@@ -262,8 +262,9 @@ void add_depth_command(CLI::App& app, Runner& runner) {
   CLI::Option* inpainter =
       sub->add_option(
              "--inpainter", options.inpainter,
-             std::string("How each side of a hole is filled: ") + kAlongLines +
-                 " (along rows, columns and diagonals) or a back-end: " + join(inpainter_names()))
+             "Back-end for holes of up to --backend-max-pixels (larger ones along rows, columns "
+             "and diagonals), or " +
+                 std::string(kAlongLines) + " for every hole: " + join(inpainter_names()))
           ->capture_default_str()
           ->check(CLI::IsMember(depth_filler_names()));
   add_foe_inference_options(sub, options.inpainting);
@@ -271,6 +272,11 @@ void add_depth_command(CLI::App& app, Runner& runner) {
                 "Fill along rows, columns and diagonals without looking for occluding edges "
                 "hole by hole: a few ms a VGA frame, less accurate at depth edges")
       ->excludes(inpainter);
+  sub->add_option("--backend-max-pixels", options.backend_max_pixels,
+                  "Largest hole (pixels) the back-end fills; larger ones are filled along lines "
+                  "(0: every hole by the back-end)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   sub->add_option("--max-hole", options.max_hole_pixels,
                   "Leave holes of more pixels as they are (0, the default: no limit)")
       ->capture_default_str()

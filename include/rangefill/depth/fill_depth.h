@@ -32,10 +32,15 @@ struct DepthFillOptions {
   /// (docs/depth-maps.md). Reads discontinuity, threads (bands of rows), color, max_hole_pixels
   /// and keep_border of the options below.
   bool fast = false;
-  /// How each side of a hole is filled from its source (step 3 below): kAlongLines, or a name of
-  /// inpainter_names() for that back-end (slower, and no more accurate on the depth kit:
-  /// docs/depth-maps.md).
-  std::string inpainter = kAlongLines;
+  /// How each side of a hole is filled from its source (step 3 below): a name of
+  /// inpainter_names(), the back-end for holes of up to backend_max_pixels, larger ones along
+  /// lines; or kAlongLines for every hole along lines.
+  std::string inpainter = "harmonic";
+  /// The largest hole (pixels) given to the back-end; 0: every hole. The back-end's membrane
+  /// hedges between surfaces where the side of a pixel is in doubt, lines commit to one; large
+  /// holes (the frame's invalid border, regions with no return) cost the back-end most and are
+  /// filled as well along lines. Chosen on the depth kit's tuning frames (docs/depth-maps.md).
+  long long backend_max_pixels = 2000;
   /// A colour image registered to the depth (CV_8UC3, BGR or RGB; or CV_8UC1 grey), or empty.
   /// With it, a colour edge parts the sides of an occluding edge (step 2) and weakens the guesses
   /// that cross it (step 3); without it nothing changes.
@@ -86,7 +91,8 @@ struct DepthFillStats {
 /// outside the filled holes as given, bit for bit; 16-bit fills rounded to the millimetre. Invalid
 /// pixels outside the mask are never read as data. Deterministic at any thread count. Throws
 /// InvalidInput, with a one-line message, on a bad type or size, an unknown back-end or options
-/// out of range (discontinuity ≤ 0, margin < 1, max_hole_pixels < 0, threads < 1).
+/// out of range (discontinuity ≤ 0, margin < 1, max_hole_pixels < 0, backend_max_pixels < 0,
+/// threads < 1).
 ///
 /// Each hole (a connected component of the mask, 8-neighbourhood) is filled on its own, from a
 /// window of `margin` pixels around it. Its rim is the valid pixels 8-adjacent to it. A hole that
@@ -109,9 +115,10 @@ struct DepthFillStats {
 ///     own. So a sensor shadow (a band between a near object and the background) is filled at the
 ///     background's depth, never by a ramp from near to far, and a hole across a silhouette is
 ///     parted near it; a side with no valid pixel of its own gives its pixels to the other.
-///  3. Each side is filled along lines (inpainter kAlongLines, the default: fill_along_lines over
-///     the side's source pixels, guesses weighted by their colour affinity to the pixel when a
-///     colour image is given), or by a back-end: the source pixels go to inverse depth 1/z, on
+///  3. Each side is filled by the back-end (holes of up to backend_max_pixels) or along lines
+///     (larger holes, or inpainter kAlongLines: fill_along_lines over the side's source pixels,
+///     guesses weighted by their colour affinity to the pixel when a colour image is given). For
+///     the back-end the source pixels go to inverse depth 1/z, on
 ///     which a plane of the scene is linear in the pixel, normalised onto [0, 1] over the source
 ///     (as eq. 7–8 do for range images), minus the trend if any; the back-end restores the side
 ///     with every other pixel of the window masked; the fill is clamped to the source's range
