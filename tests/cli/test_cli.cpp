@@ -324,16 +324,19 @@ TEST(Cli, DepthTakesAColourImage) {
   cv::circle(depth, {30, 24}, 8, cv::Scalar(0), cv::FILLED);
   write_depth_image(depth, dir / "in.png");
   ASSERT_TRUE(cv::imwrite((dir / "in.jpg").string(), colour, {cv::IMWRITE_JPEG_QUALITY, 100}));
-  const Outcome guided = run("depth " + (dir / "in.png").string() + " --color " +
+  // Colour guides the fill along lines, which this small hole gets with --inpainter lines.
+  const Outcome guided = run("depth --inpainter lines " + (dir / "in.png").string() + " --color " +
                              (dir / "in.jpg").string() + " -o " + (dir / "out.png").string());
   ASSERT_EQ(guided.exit_code, 0) << guided.err;
   DepthFillOptions options;
+  options.inpainter = kAlongLines;
   options.color = read_color_image(dir / "in.jpg");
   cv::Mat expected;
   fill_depth(depth, cv::noArray(), expected, options);
   EXPECT_EQ(cv::norm(read_depth_image(dir / "out.png"), expected, cv::NORM_INF), 0);
   cv::Mat plain;
-  fill_depth(depth, cv::noArray(), plain);
+  options.color = cv::Mat();
+  fill_depth(depth, cv::noArray(), plain, options);
   EXPECT_GT(cv::norm(plain, expected, cv::NORM_INF), 0);
 
   ASSERT_TRUE(cv::imwrite((dir / "small.png").string(), colour.colRange(0, 32)));
@@ -350,8 +353,9 @@ TEST(Cli, DepthTakesAColourImage) {
   write_depth_image(depth, dir / "frames" / "a.png");
   write_depth_image(depth, dir / "frames" / "b.png");
   fs::copy_file(dir / "in.jpg", dir / "colour" / "a.jpg");
-  const Outcome batch = run("depth --batch " + (dir / "frames").string() + " --out-dir " +
-                            (dir / "out").string() + " --color-dir " + (dir / "colour").string());
+  const Outcome batch =
+      run("depth --inpainter lines --batch " + (dir / "frames").string() + " --out-dir " +
+          (dir / "out").string() + " --color-dir " + (dir / "colour").string());
   EXPECT_EQ(batch.exit_code, 5) << batch.err;
   EXPECT_EQ(cv::norm(read_depth_image(dir / "out" / "a.png"), expected, cv::NORM_INF), 0);
   EXPECT_FALSE(fs::exists(dir / "out" / "b.png"));
