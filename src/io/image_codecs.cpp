@@ -190,7 +190,13 @@ cv::Mat decode_jpeg(std::string_view bytes, const std::string& name) {
   errors.manager.error_exit = jpeg_failed;
   errors.manager.emit_message = jpeg_warned;
   cv::Mat image;
-  const bool decoded = decode_jpeg_into(bytes, name, errors, jpeg, image);
+  bool decoded = false;
+  try {
+    decoded = decode_jpeg_into(bytes, name, errors, jpeg, image);
+  } catch (...) {  // check_size: a size the bytes cannot hold
+    jpeg_destroy_decompress(&jpeg);
+    throw;
+  }
   jpeg_destroy_decompress(&jpeg);
   if (!decoded) throw InvalidInput(name + ": corrupt JPEG: " + one_line(errors.message));
   return image;

@@ -1,8 +1,8 @@
-// libFuzzer target for the depth-image decoders (src/io/image_codecs.h: PNG behind the PNG check,
-// TIFF, EXR), as read_depth_image and read_mask_image use them. For any bytes, decode_image either
-// returns an image or throws InvalidInput with one line naming the file. Anything else (another
-// exception, a crash, a sanitizer report, an image of another size than a PNG header declares) is
-// a finding.
+// libFuzzer target for the image decoders (src/io/image_codecs.h: PNG behind the PNG check, JPEG,
+// TIFF, EXR), as the depth, mask and colour readers use them. For any bytes, decode_color_image
+// either returns an image or throws InvalidInput with one line naming the file. Anything else
+// (another exception, a crash, a sanitizer report, an image of another size than a PNG header
+// declares) is a finding.
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -34,7 +34,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
   cv::Mat image;
   try {
-    image = rangefill::detail::decode_image(bytes, kName);
+    image = rangefill::detail::decode_color_image(bytes, kName);
   } catch (const rangefill::InvalidInput& error) {
     const std::string_view message = error.what();
     if (message.find('\n') != std::string_view::npos) finding("message of several lines");
