@@ -78,6 +78,34 @@ TEST(DepthFiles, AreExchangedWithOpenCvBitForBit) {
   fs::remove_all(dir);
 }
 
+// Colour images read as OpenCV reads them: JPEG (libjpeg) and PNG, colour (BGR) and grey; a
+// truncated JPEG or a 16-bit one is refused naming the file.
+TEST(ColorFiles, ReadAsOpenCvReadsThem) {
+  const fs::path dir = testing::temporary_directory("colour-files");
+  cv::Mat colour(24, 32, CV_8UC3);
+  cv::randu(colour, 0, 256);
+  cv::Mat grey;
+  cv::extractChannel(colour, grey, 1);
+  for (const auto& [name, image] : std::vector<std::pair<std::string, cv::Mat>>{
+           {"c.jpg", colour}, {"g.jpg", grey}, {"c.png", colour}, {"g.png", grey}}) {
+    SCOPED_TRACE(name);
+    ASSERT_TRUE(cv::imwrite((dir / name).string(), image));
+    const cv::Mat expected = cv::imread((dir / name).string(), cv::IMREAD_UNCHANGED);
+    EXPECT_TRUE(bit_identical(read_color_image(dir / name), expected));
+  }
+  const std::string jpeg = read_file(dir / "c.jpg");
+  write_file_atomically(jpeg.substr(0, jpeg.size() / 3), dir / "cut.jpg");
+  EXPECT_THROW(read_color_image(dir / "cut.jpg"), InvalidInput);
+  try {
+    read_color_image(dir / "cut.jpg");
+  } catch (const InvalidInput& error) {
+    EXPECT_EQ(std::string(error.what()).rfind((dir / "cut.jpg").string() + ": ", 0), 0u);
+  }
+  write_depth_image(sample_depth(CV_16UC1), dir / "deep.png");
+  EXPECT_THROW(read_color_image(dir / "deep.png"), InvalidInput);
+  fs::remove_all(dir);
+}
+
 // Truncated or damaged TIFF and EXR files are refused with one line naming the file; libtiff and
 // OpenEXR print nothing.
 TEST(DepthFiles, DamagedTiffAndExrAreRefusedSilently) {
