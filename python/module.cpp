@@ -17,6 +17,7 @@
 #include "rangefill/inpaint/inpainter.h"
 #include "rangefill/io/depth_io.h"
 #include "rangefill/io/mesh_io.h"
+#include "rangefill/repair/filler_options.h"
 #include "rangefill/repair/holes.h"
 #include "rangefill/repair/pipeline.h"
 #include "rangefill/repair/point_cloud.h"
@@ -458,45 +459,52 @@ Raises OSError when the file cannot be read, ValueError when it is malformed.)")
 (binary unless ascii; PLY carries the provenance unless provenance=False). Raises ValueError or
 OSError.)");
   const RepairOptions repair;
+  const FillerOptions fillers;
+  module.def("filler_names", &filler_names,
+             "The fillers' names (filler, fallback and select take them; fairing:c0|c1|c2 and "
+             "plane:BACKEND name variants).");
   module.def(
       "repair",
       [](const Mesh& mesh, const std::string& filler, const std::string& fallback,
-         const std::string& inpainter, const std::string& trend,
+         const std::string& select, const std::string& inpainter, const std::string& trend,
          const std::optional<std::vector<int>>& holes, bool fill_all, double border_share,
          int max_hole_size, double max_hole_area, int passes, int threads, double beta,
          double gamma, int rings, double radius, double alpha, const std::string& mesher) {
+        FillerOptions fillers;
+        fillers.plane.inpainter = inpainter;
+        fillers.plane.trend = trend_from_name(trend);
+        fillers.plane.image.beta = beta;
+        fillers.plane.inpainting.radius = radius;
+        fillers.plane.inpainting.mls_alpha = alpha;
+        make_inpainter(inpainter, fillers.plane.inpainting);  // an unknown name fails first
         RepairOptions options;
-        options.strategies = strategy_chain(filler_from_name(filler), fallback);
-        options.inpainter = inpainter;
-        make_inpainter(inpainter, options.inpainting);  // an unknown name fails before the work
-        options.trend = trend_from_name(trend);
+        options.chain = make_filler_chain(filler, fallback, fillers);
+        options.selection.candidates = make_fillers(select, fillers);
         if (holes) options.holes = *holes;
         options.border_share = fill_all ? 0 : border_share;
         options.max_hole_edges = max_hole_size;
         options.max_hole_area = max_hole_area;
         options.passes = passes;
         options.threads = threads;
-        options.image.beta = beta;
         options.zone.gamma_degrees = gamma;
         options.zone.rings = rings;
-        options.inpainting.radius = radius;
-        options.inpainting.mls_alpha = alpha;
         return repair_mesh(mesh, options, mesher);
       },
-      py::arg("mesh"), py::kw_only(), py::arg("filler") = filler_name(kDefaultFiller),
-      py::arg("fallback") = kDefaultFallbacks, py::arg("inpainter") = repair.inpainter,
-      py::arg("trend") = trend_name(repair.trend), py::arg("holes") = py::none(),
+      py::arg("mesh"), py::kw_only(), py::arg("filler") = kDefaultFiller,
+      py::arg("fallback") = kDefaultFallbacks, py::arg("select") = kDefaultCandidates,
+      py::arg("inpainter") = fillers.plane.inpainter,
+      py::arg("trend") = trend_name(fillers.plane.trend), py::arg("holes") = py::none(),
       py::arg("fill_all") = false, py::arg("border_share") = repair.border_share,
       py::arg("max_hole_size") = repair.max_hole_edges,
       py::arg("max_hole_area") = repair.max_hole_area, py::arg("passes") = repair.passes,
-      py::arg("threads") = repair.threads, py::arg("beta") = repair.image.beta,
+      py::arg("threads") = repair.threads, py::arg("beta") = fillers.plane.image.beta,
       py::arg("gamma") = repair.zone.gamma_degrees, py::arg("rings") = repair.zone.rings,
-      py::arg("radius") = repair.inpainting.radius, py::arg("alpha") = repair.inpainting.mls_alpha,
-      py::arg("mesher") = "greedy",
+      py::arg("radius") = fillers.plane.inpainting.radius,
+      py::arg("alpha") = fillers.plane.inpainting.mls_alpha, py::arg("mesher") = "greedy",
       R"(Fills the holes of a mesh; returns (repaired, report).
 
-The options and their defaults are `rangefill repair`'s (README): filler and fallback (the fill
-chain), inpainter, trend, holes (loop ids of holes(); None: every loop but borders), fill_all,
+The options and their defaults are `rangefill repair`'s (docs/repair.md): filler and fallback
+(the fill chain), select (the band test's candidates, or "none"), inpainter, trend, holes (loop ids of holes(); None: every loop but borders), fill_all,
 border_share, max_hole_size (edges), max_hole_area (the mesh's units squared), passes, threads
 (every hardware thread; the result does not depend on it), beta (grid step in mean edge
 lengths), gamma (degrees), rings, radius (pixels), alpha (mls), mesher ('greedy' meshes a point

@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include "rangefill/repair/filler_options.h"
+
 namespace rangefill::testing {
 
 namespace fs = std::filesystem;
@@ -189,11 +191,20 @@ double azimuth_degrees(const Vec3& p) {
   return angle < 0 ? angle + 360 : angle;
 }
 
-RepairOptions paper_chain() {
+RepairOptions paper_chain(const PlaneFillerOptions& plane) {
+  FillerOptions fillers;
+  fillers.plane = plane;
   RepairOptions options;
-  options.strategies = strategy_chain(Filler::plane, "front,least-area");
+  options.chain = make_filler_chain("plane", "front,least-area", fillers);
   options.selection.candidates.clear();  // the chain alone
   return options;
+}
+
+PlaneFillerOptions plane_options(const std::string& inpainter, TrendKind trend) {
+  PlaneFillerOptions plane;
+  plane.inpainter = inpainter;
+  plane.trend = trend;
+  return plane;
 }
 
 Mesh make_box(int n) {

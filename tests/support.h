@@ -8,8 +8,10 @@
 
 #include "rangefill/core/mesh.h"
 #include "rangefill/repair/fill.h"
+#include "rangefill/repair/fillers.h"
 #include "rangefill/repair/holes.h"
 #include "rangefill/repair/pipeline.h"
+#include "rangefill/repair/plane_filler.h"
 #include "rangefill/repair/zone.h"
 
 namespace rangefill::testing {
@@ -27,7 +29,11 @@ Vec3 round_to_float(const Vec3& v);
 /// Repair options whose chain is the Pérez pipeline's: planes first, then the advancing front, the
 /// parts of a complex hole and the loop's patches (the default chain before the faired patch led
 /// it). Tests of the image path and of the back-ends use it.
-RepairOptions paper_chain();
+RepairOptions paper_chain(const PlaneFillerOptions& plane = {});
+
+/// The image pipeline's options with back-end `inpainter` and `trend`, the rest defaults.
+PlaneFillerOptions plane_options(const std::string& inpainter,
+                                 TrendKind trend = TrendKind::automatic);
 
 /// The unit cube [0,1]³ as 12 outward-facing triangles on 8 vertices.
 Mesh make_cube();

@@ -251,21 +251,17 @@ cv::Mat fill_from_source(const cv::Mat& z, const cv::Mat& hole, const cv::Mat& s
   double lowest = 0, highest = 0;
   cv::minMaxLoc(inverse, &lowest, &highest, nullptr, nullptr, source);
   const double scale = highest > lowest ? 1 / (highest - lowest) : 1;
-  RangeImage image;  // only depth and labels, what fit_trend reads
-  image.labels = cv::Mat(z.size(), CV_8U, cv::Scalar(kGapPixel));
-  image.labels.setTo(kHolePixel, hole);
-  image.labels.setTo(kKnownPixel, source);
-  image.depth = cv::Mat::zeros(z.size(), CV_32F);
-  cv::Mat normalised = (inverse - lowest) * scale;
-  normalised.copyTo(image.depth, source);
+  cv::Mat labels(z.size(), CV_8U, cv::Scalar(kGapPixel));
+  labels.setTo(kHolePixel, hole);
+  labels.setTo(kKnownPixel, source);
+  cv::Mat normalised = (inverse - lowest) * scale, values = cv::Mat::zeros(z.size(), CV_32F);
+  normalised.copyTo(values, source);
 
-  // Perspective pixels are no length unit: a sphere (or auto) trend is fitted as a quadric.
-  const Trend trend = fit_trend(image.depth, image.labels, options.trend, options.trend_ring);
-  const cv::Mat trend_image =
-      trend.kind == TrendKind::none ? cv::Mat::zeros(z.size(), CV_32F) : trend.image(z.size());
-  cv::Mat restored;
-  inpainter.inpaint(image.depth - trend_image, image.labels != kKnownPixel, restored);
-  restored += trend_image;
+  // Perspective pixels are no length unit (height unit 0): a sphere (or auto) trend is fitted as
+  // a quadric.
+  TrendKind fitted = TrendKind::none;
+  const cv::Mat restored = inpaint_residual(values, labels, labels != kKnownPixel, inpainter,
+                                            options.trend, options.trend_ring, 0, fitted);
   cv::Mat filled(z.size(), CV_32F, cv::Scalar(0));
   for (int row = 0; row < z.rows; ++row) {
     for (int col = 0; col < z.cols; ++col) {

@@ -8,6 +8,7 @@
 
 #include "rangefill/core/errors.h"
 #include "rangefill/repair/holes.h"
+#include "rangefill/repair/plane_filler.h"
 
 namespace rangefill {
 
@@ -61,7 +62,7 @@ std::vector<HoleScore> score_repair(const Mesh& original, const PunchResult& pun
     score.method = report.method;
     score.selected = report.selected;
     score.zone_faces = report.zone_faces;
-    score.stages = report.stages;
+    score.steps = report.steps;
     if (!report.filled) continue;
     const std::vector<int> patch = faces_of_hole(repaired.mesh, report.id);
     score.distance = surface_distance(repaired.mesh, patch, original,

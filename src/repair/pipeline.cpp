@@ -10,6 +10,7 @@
 
 #include "rangefill/core/errors.h"
 #include "rangefill/core/parallel.h"
+#include "rangefill/repair/fill_chain.h"
 
 namespace rangefill {
 
@@ -179,14 +180,17 @@ std::vector<HoleReport> reports_for(const std::vector<const BoundaryLoop*>& loop
 
 // Step 2 of a pass: every chosen loop filled against the same surface, in parallel; a loop
 // through an unfillable vertex is refused without a try.
-std::vector<std::optional<Fill>> fill_pass(
-    const SurfaceContext& surface, const std::vector<const BoundaryLoop*>& loops,
-    const Inpainter& inpainter, const CandidateFillers& candidates, const RepairOptions& options,
-    bool last_pass, const RepairState& state, std::vector<HoleReport>& reports) {
+std::vector<std::optional<Fill>> fill_pass(const SurfaceContext& surface,
+                                           const std::vector<const BoundaryLoop*>& loops,
+                                           const RepairOptions& options, bool last_pass,
+                                           const RepairState& state,
+                                           std::vector<HoleReport>& reports) {
   std::mutex callback_mutex;  // workers report one at a time
-  FillOptions fill_options = options;
+  ChainOptions chain_options;
+  chain_options.zone = options.zone;
+  chain_options.last_pass = last_pass;
   if (options.on_images) {
-    fill_options.on_images = [&](const HoleImages& images) {
+    chain_options.on_images = [&](const HoleImages& images) {
       std::lock_guard<std::mutex> lock(callback_mutex);
       options.on_images(images);
     };
@@ -199,14 +203,14 @@ std::vector<std::optional<Fill>> fill_pass(
     const int defect = first_vertex_among(loop, state.unfillable);
     if (defect >= 0) {
       report.attempts.push_back(
-          {std::nullopt, {Refusal::nonmanifold_rim, "vertex " + std::to_string(defect)}});
+          {"", "", {Refusal::nonmanifold_rim, "vertex " + std::to_string(defect)}});
       report.failure = "hole " + std::to_string(report.id) + ": " +
                        refusal_text(Refusal::nonmanifold_rim) + " (vertex " +
                        std::to_string(defect) + ")";
     } else {
       try {
-        fills[i] = fill_by_selection(surface, loop, candidates, options.selection.band_rings,
-                                     inpainter, fill_options, last_pass, report);
+        fills[i] = fill_by_selection(surface, loop, options.selection, options.chain, chain_options,
+                                     report);
       } catch (const std::exception& error) {
         report.failure = error.what();
       }
@@ -298,12 +302,13 @@ std::vector<OpenLoop> open_loops_after_pass(const Mesh& mesh, const HoleSet& hol
 void defer_fill(const BoundaryLoop& loop, int other, RepairState& state, HoleReport& report) {
   state.seen.erase(sorted_vertices(loop));
   report.attempts.push_back(
-      {report.strategy,
+      {report.filler,
+       report.method,
        {Refusal::intersects, "with the fill of hole " + std::to_string(other) + " of its pass"}});
-  report.failure = "hole " + std::to_string(report.id) + ": " + strategy_name(*report.strategy) +
+  report.failure = "hole " + std::to_string(report.id) + ": " + report.method +
                    ": its fill would intersect the fill of hole " + std::to_string(other);
   report.filled = false;
-  report.strategy.reset();
+  report.filler.clear();
   report.method.clear();
   report.new_vertices = report.new_faces = 0;
 }
@@ -356,9 +361,8 @@ struct PassFills {
 // (the mesh, its topology and its grown arrays at once were a large repair's peak of memory).
 // The first pass also takes d_m, the restoration matrix's first row, the defects and the
 // unfillable vertices.
-PassFills fill_loops(const Mesh& mesh, int pass, const Inpainter& inpainter,
-                     const CandidateFillers& candidates, const RepairOptions& options,
-                     double& mean_edge, RepairState& state, RepairResult& result) {
+PassFills fill_loops(const Mesh& mesh, int pass, const RepairOptions& options, double& mean_edge,
+                     RepairState& state, RepairResult& result) {
   SurfaceContext surface(mesh, mean_edge);
   if (pass == 0) {
     mean_edge = surface.mean_edge;
@@ -378,8 +382,8 @@ PassFills fill_loops(const Mesh& mesh, int pass, const Inpainter& inpainter,
   PassFills filled;
   filled.chosen = choose_loops(surface.holes, pass, options, state);
   filled.reports = reports_for(filled.chosen, pass, state);
-  filled.fills = fill_pass(surface, filled.chosen, inpainter, candidates, options,
-                           pass == options.passes - 1, state, filled.reports);
+  filled.fills =
+      fill_pass(surface, filled.chosen, options, pass == options.passes - 1, state, filled.reports);
   filled.holes = std::move(surface.holes);  // the loops stay where `chosen` points
   return filled;
 }
@@ -394,15 +398,10 @@ RepairResult repair(Mesh&& input, const RepairOptions& options) {
   RepairResult result;
   result.mesh = std::move(input);
   Mesh& mesh = result.mesh;
-  const std::unique_ptr<Inpainter> inpainter =
-      make_inpainter(options.inpainter, options.inpainting);
-  const CandidateFillers candidates(options.selection.candidates, options.inpainter,
-                                    options.inpainting);
   double mean_edge = 0;  // the input's d_m, used in every pass
   RepairState state;
   for (int pass = 0; pass < options.passes; ++pass) {
-    PassFills filled =
-        fill_loops(mesh, pass, *inpainter, candidates, options, mean_edge, state, result);
+    PassFills filled = fill_loops(mesh, pass, options, mean_edge, state, result);
     const bool next_pass = merge_pass(filled.chosen, filled.fills, filled.reports, state, result);
     state.next_id += static_cast<int>(filled.holes.loops.size());
     if (loops_follow_from_pass(filled.holes, next_pass)) {

@@ -12,52 +12,6 @@
 
 namespace rangefill {
 
-namespace {
-
-Candidate candidate_from_name(const std::string& name) {
-  Candidate candidate;
-  candidate.name = name;
-  const size_t colon = name.find(':');
-  const std::string filler = name.substr(0, colon);
-  const std::string variant = colon == std::string::npos ? "" : name.substr(colon + 1);
-  if (filler == "fairing") {
-    candidate.strategy = Strategy::fairing;
-    if (variant == "c0" || variant == "c1" || variant == "c2") {
-      candidate.continuity = variant[1] - '0';
-    } else if (!variant.empty()) {
-      throw InvalidInput("unknown candidate '" + name + "' (fairing takes :c0, :c1 or :c2)");
-    }
-  } else if (filler == "plane") {
-    candidate.strategy = Strategy::plane;
-    candidate.inpainter = variant;
-  } else if (filler == "front" && variant.empty()) {
-    candidate.strategy = Strategy::front;
-  } else {
-    throw InvalidInput("unknown candidate '" + name +
-                       "' (expected fairing[:c0|:c1|:c2], plane[:BACKEND] or front)");
-  }
-  return candidate;
-}
-
-}  // namespace
-
-std::vector<Candidate> parse_candidates(const std::string& list) {
-  std::vector<Candidate> candidates;
-  if (list.empty() || list == "none") return candidates;
-  for (size_t start = 0; start <= list.size();) {
-    const size_t end = std::min(list.find(',', start), list.size());
-    Candidate candidate = candidate_from_name(list.substr(start, end - start));
-    for (const Candidate& other : candidates) {
-      if (other.name == candidate.name) {
-        throw InvalidInput("candidate '" + candidate.name + "' listed twice");
-      }
-    }
-    candidates.push_back(std::move(candidate));
-    start = end + 1;
-  }
-  return candidates;
-}
-
 std::optional<BandTest> hide_band(const SurfaceContext& surface, const BoundaryLoop& hole,
                                   int band_rings, int context_rings) {
   if (band_rings < 1 || context_rings < 1) {
@@ -144,68 +98,49 @@ double band_distance(const BandTest& test, const Fill& fill) {
   return std::sqrt(sum / static_cast<double>(test.hidden.size()));
 }
 
-CandidateFillers::CandidateFillers(const std::vector<Candidate>& list,
-                                   const std::string& default_inpainter,
-                                   const InpainterOptions& inpainting)
-    : candidates(list) {
-  for (const Candidate& candidate : candidates) {
-    inpainters.push_back(
-        candidate.strategy == Strategy::plane
-            ? make_inpainter(candidate.inpainter.empty() ? default_inpainter : candidate.inpainter,
-                             inpainting)
-            : nullptr);
-  }
-}
-
 namespace {
 
-// The options of `options` that run `candidate` alone.
-FillOptions candidate_options(const FillOptions& options, const Candidate& candidate) {
-  FillOptions alone = options;
-  alone.strategies = {candidate.strategy};
-  alone.fairing.continuity = candidate.continuity;
-  return alone;
-}
-
-// Rings of the faces kept around the band: what the candidates read around the enlarged hole
-// (the zone of eq. 2 for its area, the fairing's rings), and one more.
+// Rings of the faces kept around the band: what the fillers read around the enlarged hole (the
+// zone of eq. 2 for its area, their own context rings), and one more.
 int context_rings(const SurfaceContext& surface, const BoundaryLoop& hole, int band_rings,
-                  const FillOptions& options) {
+                  const FillerChain& fillers, const ZoneOptions& zone) {
   const double band_width = band_rings * surface.mean_edge;
   const double enlarged_area =
       hole.area + hole.perimeter * band_width + M_PI * band_width * band_width;
-  const int zone_rings = options.zone.rings > 0
-                             ? options.zone.rings
-                             : rings_for_hole(enlarged_area, surface.mean_edge, options.zone);
-  return std::max(zone_rings, options.fairing.rings) + 1;
+  int rings = zone.rings > 0 ? zone.rings : rings_for_hole(enlarged_area, surface.mean_edge, zone);
+  for (const auto& filler : fillers) rings = std::max(rings, filler->context_rings());
+  return rings + 1;
 }
 
 }  // namespace
 
 std::optional<Fill> fill_by_selection(const SurfaceContext& surface, const BoundaryLoop& hole,
-                                      const CandidateFillers& fillers, int band_rings,
-                                      const Inpainter& inpainter, const FillOptions& options,
-                                      bool last_pass, HoleReport& report) {
+                                      const SelectionOptions& selection, const FillerChain& chain,
+                                      const ChainOptions& options, HoleReport& report) {
+  const FillerChain& candidates = selection.candidates;
   std::optional<BandTest> test;
-  if (!fillers.candidates.empty()) {
-    test = hide_band(surface, hole, band_rings, context_rings(surface, hole, band_rings, options));
+  if (!candidates.empty()) {
+    FillerChain read = candidates;
+    read.insert(read.end(), chain.begin(), chain.end());
+    test = hide_band(surface, hole, selection.band_rings,
+                     context_rings(surface, hole, selection.band_rings, read, options.zone));
   }
-  if (!test) return fill_by_chain(surface, hole, inpainter, options, last_pass, report);
+  if (!test) return fill_by_chain(surface, hole, chain, options, report);
 
-  SurfaceContext band_surface(test->mesh, surface.mean_edge);
-  band_surface.larger_angles = false;  // a fill's shape, not its triangles' angles, is scored
-  std::vector<size_t> order(fillers.candidates.size());
+  const SurfaceContext band_surface(test->mesh, surface.mean_edge);
+  ChainOptions on_band = options;
+  on_band.on_images = nullptr;  // the images are of the hole itself
+  on_band.last_pass = false;
+  on_band.acceptance.larger_angles = false;  // a fill's shape, not its triangles' angles, is scored
+  std::vector<size_t> order(candidates.size());
   std::iota(order.begin(), order.end(), 0);
-  for (size_t i = 0; i < fillers.candidates.size(); ++i) {
-    const Candidate& candidate = fillers.candidates[i];
-    const Inpainter& candidate_inpainter = fillers.inpainter_of(i, inpainter);
+  for (const auto& candidate : candidates) {
     const auto start = std::chrono::steady_clock::now();
     HoleReport scratch;
-    FillOptions on_band = candidate_options(options, candidate);
-    on_band.on_images = nullptr;  // the images are of the hole itself
+    scratch.id = report.id;
     const std::optional<Fill> fill =
-        fill_by_chain(band_surface, test->hole, candidate_inpainter, on_band, false, scratch);
-    CandidateScore score{candidate.name, std::nullopt, 0};
+        fill_by_chain(band_surface, test->hole, {candidate}, on_band, scratch);
+    CandidateScore score{candidate->name(), std::nullopt, 0};
     if (fill) score.score = band_distance(*test, *fill) / surface.mean_edge;
     score.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report.selection.push_back(score);
@@ -217,22 +152,19 @@ std::optional<Fill> fill_by_selection(const SurfaceContext& surface, const Bound
   });
   std::vector<Attempt> attempts;
   for (size_t i : order) {
-    const Candidate& candidate = fillers.candidates[i];
     HoleReport tried = report;
     tried.attempts = attempts;
-    std::optional<Fill> fill =
-        fill_by_chain(surface, hole, fillers.inpainter_of(i, inpainter),
-                      candidate_options(options, candidate), last_pass, tried);
+    std::optional<Fill> fill = fill_by_chain(surface, hole, {candidates[i]}, options, tried);
     attempts = tried.attempts;
     if (fill) {
       report = std::move(tried);
-      report.selected = candidate.name;
+      report.selected = candidates[i]->name();
       return fill;
     }
   }
   HoleReport chained = report;
   chained.attempts = attempts;
-  std::optional<Fill> fill = fill_by_chain(surface, hole, inpainter, options, last_pass, chained);
+  std::optional<Fill> fill = fill_by_chain(surface, hole, chain, options, chained);
   report = std::move(chained);
   return fill;
 }

@@ -196,4 +196,16 @@ Trend fit_trend(const cv::Mat& values, const cv::Mat& labels, TrendKind kind, do
   return fitted;
 }
 
+cv::Mat inpaint_residual(const cv::Mat& values, const cv::Mat& labels, const cv::Mat& mask,
+                         const Inpainter& inpainter, TrendKind kind, double ring,
+                         double height_unit, TrendKind& fitted) {
+  const Trend trend = fit_trend(values, labels, kind, ring, height_unit);
+  fitted = trend.kind;
+  const cv::Mat trend_image = trend.image(values.size());
+  cv::Mat residual = values - trend_image, restored;
+  residual.setTo(0, labels == kOutsidePixel);
+  inpainter.inpaint(residual, mask, restored);
+  return restored + trend_image;
+}
+
 }  // namespace rangefill

@@ -125,12 +125,12 @@ TEST(RunMethodOnHole, AFailingMethodIsAFailureOfThatHoleOnly) {
   EXPECT_DOUBLE_EQ(failed.score.area, flat_hole().punched.holes[0].area);
   EXPECT_EQ(failed.score.distance.hausdorff, 0);
 
-  RepairOptions options;
-  options.inpainter = "no-such-back-end";
-  const HoleRun unknown = run_on_flat_hole(pipeline_method("no-such-back-end", options));
-  EXPECT_FALSE(unknown.score.filled);
-  EXPECT_EQ(unknown.score.failure.rfind("error: ", 0), 0u) << unknown.score.failure;
-  EXPECT_NE(unknown.score.failure.find("no-such-back-end"), std::string::npos);
+  try {
+    make_filler("plane:no-such-back-end");
+    ADD_FAILURE() << "an unknown back-end made a filler";
+  } catch (const InvalidInput& error) {
+    EXPECT_NE(std::string(error.what()).find("no-such-back-end"), std::string::npos);
+  }
 
   const HoleRun next = run_on_flat_hole(truth_method(0));
   EXPECT_TRUE(next.score.filled);
@@ -140,7 +140,8 @@ TEST(RunMethodOnHole, AFailingMethodIsAFailureOfThatHoleOnly) {
 // Our pipeline with a back-end fills the flat hole on a plane, flat (harmonic restores a plane
 // exactly), and hands over the hole's range image: depth, labels with hole pixels, the restoration.
 TEST(RunMethodOnHole, PipelineMethodFillsAndShowsItsImage) {
-  const HoleRun run = run_on_flat_hole(pipeline_method("harmonic", testing::paper_chain()));
+  const HoleRun run = run_on_flat_hole(
+      pipeline_method("harmonic", testing::paper_chain(testing::plane_options("harmonic"))));
   EXPECT_TRUE(run.score.filled) << run.score.failure;
   EXPECT_EQ(run.score.method, "plane");
   EXPECT_LT(run.score.distance.hausdorff, 1e-6);

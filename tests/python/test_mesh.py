@@ -1,4 +1,4 @@
-"""rangefill's meshes as numpy arrays: Mesh, read_mesh, write_mesh, repair and holes."""
+"""rangefill's meshes as numpy arrays: Mesh, read_mesh, write_mesh, repair, filler_names and holes."""
 
 import json
 
@@ -114,8 +114,21 @@ def test_invalid_meshes_and_options_raise_value_error():
         rangefill.repair(mesh)
     with pytest.raises(ValueError, match="unknown"):
         rangefill.repair(rangefill.Mesh(vertices, faces), inpainter="nope")
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match="unknown filler 'nope'"):
         rangefill.repair(rangefill.Mesh(vertices, faces), filler="nope")
+    with pytest.raises(ValueError, match="unknown filler 'plane:'"):
+        rangefill.repair(rangefill.Mesh(vertices, faces), select="fairing,plane:")
+
+
+def test_each_filler_named_closes_the_punched_sphere(punched_sphere):
+    mesh = rangefill.Mesh(*punched_sphere)
+    names = rangefill.filler_names()
+    assert names[0] == "fairing" and "plane" in names and "least-area" in names
+    for name in names:
+        repaired, report = rangefill.repair(mesh, filler=name, fallback="none", select="none")
+        assert report["holes"][0]["filled"] and report["holes"][0]["filler"] == name, name
+        if name != "plane-in-part":  # a part of the loop per pass, Section VI-C
+            assert len(report["holes"]) == 1 and rangefill.holes(repaired)["loops"] == [], name
 
 
 def test_file_errors_name_the_file(tmp_path):

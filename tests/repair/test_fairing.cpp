@@ -86,7 +86,7 @@ TEST(FillByFairing, AHoleOnASharpEdgeKeepsTheIntegrityRules) {
   const RepairResult result = repair(holed, options);
   ASSERT_EQ(result.holes.size(), 1u);
   ASSERT_TRUE(result.holes[0].filled) << result.holes[0].failure;
-  EXPECT_EQ(result.holes[0].strategy, Strategy::fairing);
+  EXPECT_EQ(result.holes[0].filler, "fairing");
   testing::expect_input_preserved(holed, result.mesh);
   EXPECT_TRUE(check_manifold(result.mesh).closed_manifold());
   const std::vector<int> generated = faces_of_hole(result.mesh, kAnyHole);

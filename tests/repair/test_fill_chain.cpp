@@ -4,6 +4,9 @@
 
 #include "rangefill/core/errors.h"
 #include "rangefill/repair/fairing.h"
+#include "rangefill/repair/filler_options.h"
+#include "rangefill/repair/fillers.h"
+#include "rangefill/repair/pipeline.h"
 #include "support.h"
 
 namespace rangefill {
@@ -11,47 +14,63 @@ namespace {
 
 // --filler and --fallback spell the chain in the order given; with planes in it, the parts of a
 // complex hole come before the loop's patches.
-TEST(StrategyChain, SpellsTheFillerAndItsFallbacks) {
-  using S = Strategy;
-  EXPECT_EQ(
-      strategy_chain(kDefaultFiller, kDefaultFallbacks),
-      (std::vector<S>{S::fairing, S::plane, S::front, S::plane_in_part, S::liepa, S::least_area}));
-  EXPECT_EQ(FillOptions().strategies, strategy_chain(kDefaultFiller, kDefaultFallbacks));
-  EXPECT_EQ(strategy_chain(Filler::plane, "none"), (std::vector<S>{S::plane, S::plane_in_part}));
-  EXPECT_EQ(strategy_chain(Filler::plane, "least-area,front"),
-            (std::vector<S>{S::plane, S::plane_in_part, S::liepa, S::least_area, S::front}));
-  EXPECT_EQ(strategy_chain(Filler::front, "least-area"),
-            (std::vector<S>{S::front, S::liepa, S::least_area}));
-  EXPECT_EQ(strategy_chain(Filler::front, "none"), (std::vector<S>{S::front}));
-  EXPECT_EQ(strategy_chain(Filler::front, "fairing"), (std::vector<S>{S::front, S::fairing}));
-  EXPECT_THROW(strategy_chain(Filler::plane, "front,fronts"), InvalidInput);
-  EXPECT_EQ(strategy_chain(Filler::plane, kDefaultFallbacks),
-            (std::vector<S>{S::plane, S::front, S::plane_in_part, S::liepa, S::least_area}));
-  EXPECT_EQ(filler_from_name(filler_name(Filler::fairing)), Filler::fairing);
-  EXPECT_THROW(filler_from_name("planes"), InvalidInput);
-  EXPECT_EQ(strategy_name(S::plane_in_part), "plane, in part");
+TEST(MakeFillerChain, SpellsTheFillerAndItsFallbacks) {
+  using Names = std::vector<std::string>;
+  const auto names = [](const std::string& filler, const std::string& fallbacks) {
+    return filler_chain_names(make_filler_chain(filler, fallbacks));
+  };
+  EXPECT_EQ(names(kDefaultFiller, kDefaultFallbacks),
+            (Names{"fairing", "plane", "front", "plane-in-part", "liepa", "least-area"}));
+  EXPECT_EQ(filler_chain_names(RepairOptions().chain), names(kDefaultFiller, kDefaultFallbacks));
+  EXPECT_EQ(names("plane", "none"), (Names{"plane", "plane-in-part"}));
+  EXPECT_EQ(names("plane", "least-area,front"),
+            (Names{"plane", "plane-in-part", "liepa", "least-area", "front"}));
+  EXPECT_EQ(names("front", "least-area"), (Names{"front", "liepa", "least-area"}));
+  EXPECT_EQ(names("front", "none"), (Names{"front"}));
+  EXPECT_EQ(names("front", "fairing"), (Names{"front", "fairing"}));
+  EXPECT_THROW(make_filler_chain("plane", "front,fronts"), InvalidInput);
+  EXPECT_EQ(names("plane", kDefaultFallbacks),
+            (Names{"plane", "front", "plane-in-part", "liepa", "least-area"}));
+  EXPECT_THROW(make_filler("planes"), InvalidInput);
+  EXPECT_THROW(make_filler("fairing:c3"), InvalidInput);
+  EXPECT_THROW(make_filler("front:telea"), InvalidInput);
+  EXPECT_EQ(make_filler("plane-in-part")->method(), "plane, in part");
+  EXPECT_EQ(make_filler("fairing:c1")->name(), "fairing:c1");
+  for (const std::string& name : filler_names()) EXPECT_EQ(make_filler(name)->name(), name);
+  EXPECT_EQ(filler_chain_names(make_fillers("fairing,plane:telea,front")),
+            (Names{"fairing", "plane:telea", "front"}));
+  EXPECT_TRUE(make_fillers("none").empty());
+  EXPECT_THROW(make_fillers("front,front"), InvalidInput);
+  EXPECT_THROW(make_fillers("fairing,"), InvalidInput);
 }
 
 // A round hole in a flat sheet: the plane fills it first; with the loop's patches only, Liepa's;
-// an island inside a hole makes every strategy refuse, each refusal recorded with its strategy.
-TEST(FillByChain, TakesTheFirstStrategyThatFillsAndRecordsTheRefusals) {
+// an island inside a hole makes every filler refuse, each refusal recorded with its filler.
+TEST(FillByChain, TakesTheFirstFillerThatFillsAndRecordsTheRefusals) {
   const Mesh sheet = testing::remove_faces(
       testing::make_grid(20), [](const Vec3& p) { return (p - Vec3(10, 10, 0)).norm() < 4; });
   const SurfaceContext surface(sheet, 0);
   const BoundaryLoop hole = testing::inner_loop(sheet);
-  const std::unique_ptr<Inpainter> inpainter = make_inpainter("harmonic");
-  FillOptions options;
-  options.strategies = strategy_chain(Filler::plane, "front,least-area");
+  FillerOptions fillers;
+  fillers.plane.inpainter = "harmonic";
+  const FillerChain paper = make_filler_chain("plane", "front,least-area", fillers);
+  const ChainOptions options;
   HoleReport plane;
-  ASSERT_TRUE(fill_by_chain(surface, hole, *inpainter, options, false, plane));
-  EXPECT_EQ(plane.strategy, Strategy::plane);
+  ASSERT_TRUE(fill_by_chain(surface, hole, paper, options, plane));
+  EXPECT_EQ(plane.filler, "plane");
+  EXPECT_EQ(plane.method, "plane");
   EXPECT_TRUE(plane.attempts.empty());
+  EXPECT_GT(plane.image.masked_pixels, 0);
+  for (const char* step : {"zone", "plane", "checking", "image", "inpainting", "stitching"}) {
+    EXPECT_GT(seconds_of(plane.steps, step), 0) << step;
+  }
 
-  options.strategies = {Strategy::liepa};
   HoleReport patch;
-  const std::optional<Fill> fill = fill_by_chain(surface, hole, *inpainter, options, false, patch);
+  const std::optional<Fill> fill =
+      fill_by_chain(surface, hole, {make_filler("liepa")}, options, patch);
   ASSERT_TRUE(fill);
-  EXPECT_EQ(patch.strategy, Strategy::liepa);
+  EXPECT_EQ(patch.filler, "liepa");
+  EXPECT_EQ(patch.method, "Liepa");
   EXPECT_TRUE(fill->points.empty());
 
   const Mesh island = testing::remove_faces(testing::make_grid(40), [](const Vec3& p) {
@@ -64,21 +83,20 @@ TEST(FillByChain, TakesTheFirstStrategyThatFillsAndRecordsTheRefusals) {
     if (loop.vertices.size() == 64) outer = loop;  // the hole's outer loop, round the island
   }
   ASSERT_FALSE(outer.vertices.empty());
-  options.strategies = strategy_chain(Filler::plane, "front,least-area");
   HoleReport refused;
-  EXPECT_FALSE(fill_by_chain(around, outer, *inpainter, options, false, refused));
+  EXPECT_FALSE(fill_by_chain(around, outer, paper, options, refused));
   EXPECT_FALSE(refused.filled);
-  ASSERT_GE(refused.attempts.size(), options.strategies.size());
-  std::vector<Strategy> tried;
+  ASSERT_GE(refused.attempts.size(), paper.size());
+  std::vector<std::string> tried;
   for (const Attempt& attempt : refused.attempts) {
-    ASSERT_TRUE(attempt.strategy);
-    if (tried.empty() || tried.back() != *attempt.strategy) tried.push_back(*attempt.strategy);
+    ASSERT_FALSE(attempt.filler.empty());
+    if (tried.empty() || tried.back() != attempt.filler) tried.push_back(attempt.filler);
   }
-  EXPECT_EQ(tried, options.strategies);
+  EXPECT_EQ(tried, filler_chain_names(paper));
   // The plane's fill and Liepa's patch both cover the island.
   EXPECT_EQ(refused.attempts.front().refused.refusal, Refusal::intersects);
   for (const Attempt& attempt : refused.attempts) {
-    if (attempt.strategy == Strategy::liepa) {
+    if (attempt.filler == "liepa") {
       EXPECT_EQ(attempt.refused.refusal, Refusal::intersects);
     }
   }
@@ -86,28 +104,49 @@ TEST(FillByChain, TakesTheFirstStrategyThatFillsAndRecordsTheRefusals) {
       << refused.failure;
 }
 
-// A surface that does not ask for larger angles gets each filler's fill as it is (the band test
-// scores those); by default the angle pass reshapes it.
-TEST(FillByChain, GivesLargerAnglesUnlessTheSurfaceSaysNot) {
+// Without the angle pass the acceptance step takes each filler's fill as it is (the band test
+// scores those); by default the pass reshapes it.
+TEST(FillByChain, GivesLargerAnglesUnlessTheAcceptanceSaysNot) {
   const Mesh sheet = testing::remove_faces(
       testing::make_grid(20), [](const Vec3& p) { return (p - Vec3(10, 10.3, 0)).norm() < 4.6; });
-  SurfaceContext surface(sheet, 0);
+  const SurfaceContext surface(sheet, 0);
   const BoundaryLoop hole = testing::inner_loop(sheet);
-  const std::unique_ptr<Inpainter> inpainter = make_inpainter("harmonic");
-  FillOptions options;
-  options.strategies = {Strategy::fairing};
+  const FillerChain fairing = {make_filler("fairing")};
   const Fill raw = std::get<Fill>(
-      fill_by_fairing(sheet, surface.topology, hole, surface.mean_edge, options.fairing));
+      fill_by_fairing(sheet, surface.topology, hole, surface.mean_edge, FairingOptions()));
+  ChainOptions options;
   HoleReport report;
-  const std::optional<Fill> angled =
-      fill_by_chain(surface, hole, *inpainter, options, false, report);
-  surface.larger_angles = false;
-  const std::optional<Fill> as_made =
-      fill_by_chain(surface, hole, *inpainter, options, false, report);
+  const std::optional<Fill> angled = fill_by_chain(surface, hole, fairing, options, report);
+  options.acceptance.larger_angles = false;
+  const std::optional<Fill> as_made = fill_by_chain(surface, hole, fairing, options, report);
   ASSERT_TRUE(angled && as_made);
   EXPECT_EQ(as_made->points, raw.points);
   EXPECT_EQ(as_made->triangles, raw.triangles);
   EXPECT_TRUE(angled->points != raw.points || angled->triangles != raw.triangles);
+}
+
+// A filler that throws ProcessingError is refused with its message; the next one fills.
+TEST(FillByChain, RefusesAFillerThatThrows) {
+  class Throwing : public Filler {
+   public:
+    std::string name() const override { return "throwing"; }
+    std::string method() const override { return "throwing"; }
+    FillOutcome fill(const HoleContext&, const AcceptFill&, FillerLog&) const override {
+      throw ProcessingError("out of luck");
+    }
+  };
+  const Mesh sheet = testing::remove_faces(
+      testing::make_grid(20), [](const Vec3& p) { return (p - Vec3(10, 10, 0)).norm() < 4; });
+  const SurfaceContext surface(sheet, 0);
+  HoleReport report;
+  ASSERT_TRUE(fill_by_chain(surface, testing::inner_loop(sheet),
+                            {std::make_shared<Throwing>(), make_filler("liepa")}, ChainOptions(),
+                            report));
+  EXPECT_EQ(report.filler, "liepa");
+  ASSERT_EQ(report.attempts.size(), 1u);
+  EXPECT_EQ(report.attempts[0].filler, "throwing");
+  EXPECT_EQ(report.attempts[0].refused.refusal, Refusal::error);
+  EXPECT_EQ(report.attempts[0].refused.detail, "out of luck");
 }
 
 // Every refusal has words.

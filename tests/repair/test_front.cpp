@@ -57,10 +57,11 @@ TEST(FillByFront, FlatHoleIsCoveredExactly) {
 
 // The one hole of `cut` filled by `method`: nothing left open, the input kept bit for bit, the
 // result a closed manifold.
-void expect_one_hole_closed_by(const Mesh& cut, const RepairResult& result, Strategy strategy) {
+void expect_one_hole_closed_by(const Mesh& cut, const RepairResult& result,
+                               const std::string& filler) {
   ASSERT_EQ(result.holes.size(), 1u);
   EXPECT_TRUE(result.holes[0].filled) << result.holes[0].failure;
-  EXPECT_EQ(result.holes[0].strategy, strategy);
+  EXPECT_EQ(result.holes[0].filler, filler);
   EXPECT_EQ(result.open_count(OpenReason::failed), 0);
   testing::expect_input_preserved(cut, result.mesh);
   EXPECT_TRUE(check_manifold(result.mesh).closed_manifold());
@@ -74,11 +75,11 @@ TEST(FrontFiller, ClosesASphereCapOnTheSphere) {
   const Mesh cut = testing::remove_faces(
       sphere, [](const Vec3& p) { return p.z() > std::cos(40 * M_PI / 180); });
   const double mean_edge = mean_edge_length(cut);
-  RepairOptions options = testing::paper_chain();
-  options.strategies = strategy_chain(Filler::front, "least-area");
+  RepairOptions options;
+  options.chain = make_filler_chain("front", "least-area");
   options.selection.candidates.clear();  // the chain alone
   const RepairResult result = repair(cut, options);
-  expect_one_hole_closed_by(cut, result, Strategy::front);
+  expect_one_hole_closed_by(cut, result, "front");
   ASSERT_GT(result.mesh.vertex_count(), cut.vertex_count() + 100);
   for (int v = cut.vertex_count(); v < result.mesh.vertex_count(); ++v) {
     EXPECT_LT(std::abs(result.mesh.positions[v].norm() - 1), 0.05 * mean_edge) << "vertex " << v;
@@ -136,19 +137,19 @@ TEST(FrontFiller, ClosesAHoleWrappedRoundATube) {
   const double mean_edge = mean_edge_length(cut);
 
   RepairOptions planes_only;
-  planes_only.strategies = strategy_chain(Filler::plane, "none");
+  planes_only.chain = make_filler_chain("plane", "none");
   planes_only.selection.candidates.clear();  // the chain alone
   const RepairResult parts = repair(cut, planes_only);
   ASSERT_FALSE(parts.holes.empty());
-  EXPECT_EQ(parts.holes[0].strategy, Strategy::plane_in_part);
+  EXPECT_EQ(parts.holes[0].filler, "plane-in-part");
 
   const RepairResult result = repair(cut, testing::paper_chain());
   ASSERT_FALSE(result.holes.empty());
   for (const HoleReport& report : result.holes) {
     EXPECT_TRUE(report.filled) << report.failure;
-    EXPECT_NE(report.strategy, Strategy::plane);
+    EXPECT_NE(report.filler, "plane");
   }
-  EXPECT_EQ(result.holes[0].strategy, Strategy::front);
+  EXPECT_EQ(result.holes[0].filler, "front");
   EXPECT_EQ(result.open_count(OpenReason::failed), 0);
   testing::expect_input_preserved(cut, result.mesh);
   EXPECT_TRUE(check_manifold(result.mesh).closed_manifold());
@@ -171,16 +172,16 @@ TEST(FrontFiller, LastPassPatchesTheWholeLoopRatherThanAPart) {
   });
   RepairOptions one_pass;
   one_pass.passes = 1;
-  one_pass.strategies = strategy_chain(Filler::plane, "none");
+  one_pass.chain = make_filler_chain("plane", "none");
   one_pass.selection.candidates.clear();  // the chain alone
   const RepairResult part = repair(cut, one_pass);
   ASSERT_EQ(part.holes.size(), 1u);
-  EXPECT_EQ(part.holes[0].strategy, Strategy::plane_in_part);
+  EXPECT_EQ(part.holes[0].filler, "plane-in-part");
   EXPECT_EQ(part.open_count(OpenReason::failed), 1);
 
-  one_pass.strategies = strategy_chain(Filler::plane, "least-area");
+  one_pass.chain = make_filler_chain("plane", "least-area");
   const RepairResult whole = repair(cut, one_pass);
-  expect_one_hole_closed_by(cut, whole, Strategy::liepa);
+  expect_one_hole_closed_by(cut, whole, "liepa");
   EXPECT_EQ(count_self_intersections(whole.mesh, faces_of_hole(whole.mesh, kAnyHole)), 0);
 }
 

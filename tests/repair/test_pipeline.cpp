@@ -17,6 +17,7 @@
 #include "rangefill/core/intersection.h"
 #include "rangefill/eval/metrics.h"
 #include "rangefill/io/mesh_io.h"
+#include "rangefill/repair/filler_options.h"
 #include "support.h"
 
 namespace rangefill {
@@ -46,13 +47,12 @@ TEST_P(EveryBackend, TiltedPlaneComesBackOnThePlane) {
   const testing::TiltedSheet sheet = testing::make_tilted_sheet(
       40, Eigen::AngleAxisd(0.9, Vec3(1, -2, 0.5).normalized()).toRotationMatrix(), Vec3(3, -7, 11),
       Vec3(20, 20, 0), 8);
-  RepairOptions options = testing::paper_chain();
-  options.inpainter = GetParam();
+  RepairOptions options = testing::paper_chain(testing::plane_options(GetParam()));
   options.holes = {sheet.hole.id};
   const RepairResult result = repair(sheet.mesh, options);
   ASSERT_EQ(result.holes.size(), 1u);
   ASSERT_TRUE(result.holes[0].filled) << result.holes[0].failure;
-  EXPECT_EQ(result.holes[0].strategy, Strategy::plane);
+  EXPECT_EQ(result.holes[0].filler, "plane");
   EXPECT_EQ(result.open_count(OpenReason::failed), 0);
   testing::expect_input_preserved(sheet.mesh, result.mesh);
 
@@ -81,13 +81,11 @@ TEST(Pipeline, HarmonicSaddleComesBackWithNavierStokes) {
   // (a fast-marching transport, not a Laplace solve) is off by 0.74-0.83 d_m on the bare image of
   // this saddle for radii 5-10; a flat fill would be off by up to 1.6 d_m.
   for (const auto& [trend, bound] : {std::pair{TrendKind::quadric, 0.1}, {TrendKind::none, 0.75}}) {
-    RepairOptions options = testing::paper_chain();
-    options.inpainter = "ns";
-    options.trend = trend;
+    RepairOptions options = testing::paper_chain(testing::plane_options("ns", trend));
     options.holes = inner_loops(saddle);
     const RepairResult result = repair(saddle, options);
     ASSERT_TRUE(result.holes.at(0).filled) << result.holes[0].failure;
-    EXPECT_EQ(result.holes[0].strategy, Strategy::plane);
+    EXPECT_EQ(result.holes[0].filler, "plane");
     double worst = 0;
     for (const Vec3& p : generated_vertices(result.mesh)) {
       worst = std::max(worst, std::abs(p.z() - (p.x() * p.x() - p.y() * p.y()) / 2));
@@ -120,13 +118,12 @@ TEST_P(SphereCap, FillStaysBetweenCuttingPlaneAndSphere) {
   ASSERT_NEAR(d_m, 0.05, 0.01);
   const double cut = std::cos(GetParam().half_angle_degrees * M_PI / 180);
   const Mesh capless = testing::remove_faces(sphere, [&](const Vec3& p) { return p.z() > cut; });
-  RepairOptions options = testing::paper_chain();
-  options.inpainter = GetParam().backend;
+  RepairOptions options = testing::paper_chain(testing::plane_options(GetParam().backend));
   const RepairResult result = repair(capless, options);
   ASSERT_EQ(result.holes.size(), 1u);
   ASSERT_TRUE(result.holes[0].filled) << result.holes[0].failure;
-  EXPECT_EQ(result.holes[0].strategy, Strategy::plane);  // the numbers are the back-end's
-  EXPECT_EQ(result.holes[0].trend, TrendKind::sphere);
+  EXPECT_EQ(result.holes[0].filler, "plane");  // the numbers are the back-end's
+  EXPECT_EQ(result.holes[0].image.trend, trend_name(TrendKind::sphere));
   testing::expect_input_preserved(capless, result.mesh);
   EXPECT_TRUE(check_manifold(result.mesh).closed_manifold());
   EXPECT_EQ(count_self_intersections(result.mesh, faces_of_hole(result.mesh, kAnyHole)), 0);
@@ -174,9 +171,7 @@ TEST(Pipeline, PaperPipelineWithoutTrendSagsBelowTheCutOnACap) {
   double plane = 1;
   for (int v : holes.loops.at(0).vertices) plane = std::min(plane, capless.positions[v].z());
   for (const char* backend : {"ns", "telea"}) {
-    RepairOptions options = testing::paper_chain();
-    options.inpainter = backend;
-    options.trend = TrendKind::none;
+    RepairOptions options = testing::paper_chain(testing::plane_options(backend, TrendKind::none));
     const RepairResult result = repair(capless, options);
     ASSERT_TRUE(result.holes.at(0).filled) << backend;
     double lowest = 1;
@@ -195,11 +190,10 @@ TEST(Pipeline, MlsBringsSphereCapsBack) {
   for (const auto& [degrees, bound] : {std::pair{20.0, 0.1}, {40.0, 0.1}}) {
     const double cut = std::cos(degrees * M_PI / 180);
     const Mesh capless = testing::remove_faces(sphere, [&](const Vec3& p) { return p.z() > cut; });
-    RepairOptions options = testing::paper_chain();
-    options.inpainter = "mls";
+    RepairOptions options = testing::paper_chain(testing::plane_options("mls"));
     const RepairResult result = repair(capless, options);
     ASSERT_TRUE(result.holes.at(0).filled) << result.holes[0].failure;
-    EXPECT_EQ(result.holes[0].strategy, Strategy::plane);
+    EXPECT_EQ(result.holes[0].filler, "plane");
     double worst = 0;
     for (const Vec3& p : generated_vertices(result.mesh))
       worst = std::max(worst, std::abs(p.norm() - 1));
@@ -225,19 +219,18 @@ TEST(Pipeline, ColourGradientIsContinuedAcrossTheHole) {
   struct Case {
     std::string inpainter;
     TrendKind trend;
-    Filler filler;
+    std::string filler;
     double bound;
   };
-  for (const Case& c : {Case{"ns", TrendKind::quadric, Filler::plane, 1e-4},
-                        Case{"mls", TrendKind::none, Filler::plane, 1e-4},
-                        Case{"ns", TrendKind::quadric, Filler::front, 0.03}}) {
-    SCOPED_TRACE(c.inpainter + " " + trend_name(c.trend) +
-                 (c.filler == Filler::front ? " front" : ""));
+  for (const Case& c :
+       {Case{"ns", TrendKind::quadric, "plane", 1e-4}, Case{"mls", TrendKind::none, "plane", 1e-4},
+        Case{"", TrendKind::none, "front", 0.03}}) {
+    SCOPED_TRACE(c.filler + " " + c.inpainter + " " + trend_name(c.trend));
+    FillerOptions fillers;
+    if (!c.inpainter.empty()) fillers.plane = testing::plane_options(c.inpainter, c.trend);
     RepairOptions options;
-    options.inpainter = c.inpainter;
-    options.trend = c.trend;
-    options.strategies =
-        strategy_chain(c.filler, c.filler == Filler::plane ? "front,least-area" : "least-area");
+    options.chain = make_filler_chain(
+        c.filler, c.filler == "plane" ? "front,least-area" : "least-area", fillers);
     options.selection.candidates.clear();  // the chain alone
     options.holes = {sheet.hole.id};
     const RepairResult result = repair(sheet.mesh, options);
@@ -386,7 +379,7 @@ HardOutcome repair_hard_case(const Mesh& truth, const Mesh& holed, const RepairO
 // The paper's pipeline alone: what is not filled on planes is not filled.
 RepairOptions planes_only() {
   RepairOptions options;
-  options.strategies = strategy_chain(Filler::plane, "none");
+  options.chain = make_filler_chain("plane", "none");
   options.selection.candidates.clear();  // the chain alone
   return options;
 }
@@ -399,15 +392,14 @@ void expect_closed_by_front_and_in_parts(const Mesh& truth, const Mesh& holed,
   ASSERT_EQ(find_holes(holed, build_topology(holed)).loops.size(), 1u);
   const HardOutcome front =
       repair_hard_case(truth, holed, testing::paper_chain(), name + ", planes then front");
-  EXPECT_EQ(front.result.holes.at(0).strategy, Strategy::front);
+  EXPECT_EQ(front.result.holes.at(0).filler, "front");
   EXPECT_LT(front.worst, front_bound);
   const HardOutcome faired = repair_hard_case(truth, holed, {}, name + ", default");
-  EXPECT_EQ(faired.result.holes.at(0).strategy, Strategy::fairing);
+  EXPECT_EQ(faired.result.holes.at(0).filler, "fairing");
   EXPECT_LT(faired.worst, front_bound);
   const HardOutcome parts = repair_hard_case(truth, holed, planes_only(), name + ", planes");
-  EXPECT_TRUE(
-      std::any_of(parts.result.holes.begin(), parts.result.holes.end(),
-                  [](const HoleReport& hole) { return hole.strategy == Strategy::plane_in_part; }));
+  EXPECT_TRUE(std::any_of(parts.result.holes.begin(), parts.result.holes.end(),
+                          [](const HoleReport& hole) { return hole.filler == "plane-in-part"; }));
   EXPECT_LT(parts.worst, parts_bound);
   EXPECT_LT(parts.hausdorff, parts_bound);
 }
@@ -468,7 +460,7 @@ TEST(HardHoles, ZoneReachingAnotherHoleDoesNotBridgeIt) {
   ASSERT_EQ(result.holes.size(), 2u);
   for (const HoleReport& hole : result.holes) {
     EXPECT_TRUE(hole.filled) << hole.failure;
-    EXPECT_EQ(hole.strategy, Strategy::plane);
+    EXPECT_EQ(hole.filler, "plane");
     EXPECT_EQ(hole.other_holes.size(), 1u) << "the zone reaches the other hole";
   }
   EXPECT_EQ(result.open_count(OpenReason::failed), 0);
@@ -559,8 +551,8 @@ TEST(HardHoles, ZoneEnclosingAnIslandDoesNotCoverIt) {
   const RepairResult result = repair(holed, options);
   ASSERT_EQ(result.holes.size(), 1u);
   ASSERT_TRUE(result.holes[0].filled) << result.holes[0].failure;
-  EXPECT_EQ(result.holes[0].strategy, Strategy::plane);
-  EXPECT_GT(result.holes[0].gap_pixels, 0);
+  EXPECT_EQ(result.holes[0].filler, "plane");
+  EXPECT_GT(result.holes[0].image.gap_pixels, 0);
   testing::expect_input_preserved(holed, result.mesh);
   for (const Vec3& p : generated_vertices(result.mesh)) {
     EXPECT_LT(std::abs(p.z()), 1e-9);

@@ -58,8 +58,7 @@ TEST_P(MeshPointCloud, SphereWithACapCutOutIsMeshedAndRepaired) {
   std::printf("%d points, %d faces, %zu boundary loops\n", cloud.vertex_count(), mesh.face_count(),
               holes.loops.size());
 
-  RepairOptions options = testing::paper_chain();
-  options.inpainter = "mls";
+  const RepairOptions options = testing::paper_chain(testing::plane_options("mls"));
   const RepairResult result = repair(mesh, options);
   testing::expect_input_preserved(mesh, result.mesh);
   EXPECT_TRUE(check_manifold(result.mesh).closed_manifold());

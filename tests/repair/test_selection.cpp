@@ -9,24 +9,6 @@
 namespace rangefill {
 namespace {
 
-TEST(ParseCandidates, NamesAFillerAndItsVariant) {
-  const std::vector<Candidate> candidates =
-      parse_candidates("fairing,fairing:c1,plane:telea,front");
-  ASSERT_EQ(candidates.size(), 4u);
-  EXPECT_EQ(candidates[0].strategy, Strategy::fairing);
-  EXPECT_EQ(candidates[0].continuity, 2);
-  EXPECT_EQ(candidates[1].continuity, 1);
-  EXPECT_EQ(candidates[2].strategy, Strategy::plane);
-  EXPECT_EQ(candidates[2].inpainter, "telea");
-  EXPECT_EQ(candidates[3].strategy, Strategy::front);
-  EXPECT_TRUE(parse_candidates("none").empty());
-  EXPECT_TRUE(parse_candidates("").empty());
-  EXPECT_THROW(parse_candidates("fairing:c3"), InvalidInput);
-  EXPECT_THROW(parse_candidates("front:telea"), InvalidInput);
-  EXPECT_THROW(parse_candidates("fairing,fairing"), InvalidInput);
-  EXPECT_THROW(parse_candidates("fairing,"), InvalidInput);
-}
-
 // A round hole of radius 4 in a unit grid: the band test hides the faces within two rings of its
 // loop, keeps more around them, and its enlarged loop runs outside the hole's, round the hidden
 // points.
@@ -70,11 +52,9 @@ TEST(BandDistance, MeasuresTheFillAgainstTheHiddenBand) {
   const std::optional<BandTest> test = hide_band(surface, testing::inner_loop(sheet), 2, 3);
   ASSERT_TRUE(test);
   const SurfaceContext band_surface(test->mesh, 0);
-  FillOptions options;
-  options.strategies = {Strategy::plane};
   HoleReport report;
   std::optional<Fill> fill =
-      fill_by_chain(band_surface, test->hole, *make_inpainter("harmonic"), options, false, report);
+      fill_by_chain(band_surface, test->hole, {make_filler("plane:harmonic")}, {}, report);
   ASSERT_TRUE(fill);
   EXPECT_LT(band_distance(*test, *fill), 1e-6);
   for (Vec3& p : fill->points) p.z() += 0.5;
@@ -90,16 +70,17 @@ TEST(FillBySelection, FillsWithTheCandidateNearestTheHiddenBand) {
       testing::remove_faces(testing::make_sphere(16), [](const Vec3& p) { return p.z() > 0.85; });
   const SurfaceContext surface(holed, 0);
   const BoundaryLoop& hole = surface.holes.loops.at(0);
-  const CandidateFillers fillers(parse_candidates("plane:harmonic,fairing"), "foe", {});
+  SelectionOptions selection;
+  selection.candidates = make_fillers("plane:harmonic,fairing");
   HoleReport report;
-  const std::optional<Fill> fill =
-      fill_by_selection(surface, hole, fillers, 2, *make_inpainter("harmonic"), {}, false, report);
+  const std::optional<Fill> fill = fill_by_selection(
+      surface, hole, selection, {make_filler("plane:harmonic")}, ChainOptions(), report);
   ASSERT_TRUE(fill);
   ASSERT_EQ(report.selection.size(), 2u);
   ASSERT_TRUE(report.selection[0].score && report.selection[1].score);
   EXPECT_LT(*report.selection[1].score, 0.5 * *report.selection[0].score);
   EXPECT_EQ(report.selected, "fairing");
-  EXPECT_EQ(report.strategy, Strategy::fairing);
+  EXPECT_EQ(report.filler, "fairing");
   for (const Vec3& p : fill->points) EXPECT_NEAR(p.norm(), 1.0, 0.01);
 }
 

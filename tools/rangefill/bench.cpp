@@ -26,11 +26,10 @@ using nlohmann::json;
 struct BenchCommand {
   std::vector<std::string> meshes;
   std::vector<std::string> punched;  // the mesh kit's punch directories, instead of meshes
-  std::string inpainters, baselines, trends = "auto", csv, save, out,
-                                     filler = filler_name(kDefaultFiller);
+  std::string inpainters, baselines, trends = "auto", csv, save, out, filler = kDefaultFiller;
   std::string fallback = kDefaultFallbacks, shapes = "disk,elongated", shard;
   std::string select = "fairing,fairing:c1,plane";  // "plane": each method's own back-end
-  std::vector<Candidate> candidates;                // of --select
+  const CLI::App* app = nullptr;                    // the sub-command, for which options were given
   std::vector<std::string> merge;                   // shard directories to make the report of
   PunchOptions punch = [] {
     PunchOptions options;
@@ -61,7 +60,8 @@ std::string png_base64(const cv::Mat& image) {
 }
 
 json score_json(const HoleScore& s) {
-  const HoleReport::Stages& t = s.stages;
+  json steps = json::array();
+  for (const StepSeconds& step : s.steps) steps.push_back({step.step, step.seconds});
   return {{"hole", s.hole},
           {"area", s.area},
           {"filled", s.filled},
@@ -76,7 +76,7 @@ json score_json(const HoleScore& s) {
           {"method", s.method},
           {"selected", s.selected},
           {"zone_faces", s.zone_faces},
-          {"stages", {t.zone, t.planes, t.image, t.inpainting, t.stitching, t.checking, t.front}}};
+          {"steps", steps}};
 }
 
 HoleScore score_from_json(const json& j) {
@@ -95,8 +95,7 @@ HoleScore score_from_json(const json& j) {
   s.method = j.at("method");
   s.selected = j.at("selected");
   s.zone_faces = j.at("zone_faces");
-  const json& t = j.at("stages");
-  s.stages = {t[0], t[1], t[2], t[3], t[4], t[5], t[6]};
+  for (const json& step : j.at("steps")) s.steps.push_back({step[0], step[1]});
   return s;
 }
 
@@ -199,15 +198,17 @@ std::string csv_table(const BenchResults& results) {
           << ',' << s.filled << ',' << d.hausdorff << ',' << d.from_first << ',' << d.from_second
           << ',' << d.mean << ',' << d_m << ',' << s.edge_ratio << ',' << s.new_vertices << ','
           << s.new_faces << ',' << s.seconds << ',' << csv_text(s.method) << ',' << s.zone_faces
-          << ',' << s.stages.zone << ',' << s.stages.planes << ',' << s.stages.image << ','
-          << s.stages.inpainting << ',' << s.stages.stitching << ',' << s.stages.checking << ','
-          << s.stages.front << ',' << csv_text(s.failure) << ',' << shape_name(hole.hole.shape)
-          << ',' << hole.hole.radius / d_m << ',' << hole.hole.length / d_m << ','
-          << hole.hole.area / (d_m * d_m) << ',' << hole.hole.bending << ','
-          << curvature_name(hole.hole.curvature) << ',' << hole.hole.sharp_feature << ','
-          << d.hausdorff / d_m << ',' << d.from_first / d_m << ',' << d.from_second / d_m << ','
-          << d.mean / d_m << ',' << run.self_intersections << ',' << run.manifold << ','
-          << run.wall_seconds << ',' << csv_text(s.selected) << ',' << s.smallest_angle << '\n';
+          << ',' << seconds_of(s.steps, "zone") << ',' << seconds_of(s.steps, "planes") << ','
+          << seconds_of(s.steps, "image") << ',' << seconds_of(s.steps, "inpainting") << ','
+          << seconds_of(s.steps, "stitching") << ',' << seconds_of(s.steps, "checking") << ','
+          << seconds_of(s.steps, "front") << ',' << csv_text(s.failure) << ','
+          << shape_name(hole.hole.shape) << ',' << hole.hole.radius / d_m << ','
+          << hole.hole.length / d_m << ',' << hole.hole.area / (d_m * d_m) << ','
+          << hole.hole.bending << ',' << curvature_name(hole.hole.curvature) << ','
+          << hole.hole.sharp_feature << ',' << d.hausdorff / d_m << ',' << d.from_first / d_m << ','
+          << d.from_second / d_m << ',' << d.mean / d_m << ',' << run.self_intersections << ','
+          << run.manifold << ',' << run.wall_seconds << ',' << csv_text(s.selected) << ','
+          << s.smallest_angle << '\n';
     }
   }
   return csv.str();
@@ -302,12 +303,14 @@ std::vector<BenchmarkMethod> bench_methods(const BenchCommand& command) {
   std::vector<BenchmarkMethod> methods;
   for (const std::string& inpainter : inpainters) {
     for (TrendKind trend : trends) {
+      FillerOptions fillers;
+      fillers.plane.inpainter = inpainter;
+      fillers.plane.inpainting = command.inpainting;
+      fillers.plane.trend = trend;
       RepairOptions options;
-      options.inpainter = inpainter;
-      options.inpainting = command.inpainting;
-      options.trend = trend;
-      options.strategies = strategies_from_arguments(command.filler, command.fallback);
-      options.selection.candidates = command.candidates;
+      options.chain = chain_from_arguments(command.filler, command.fallback, fillers);
+      options.selection.candidates =
+          candidates_from_arguments(*command.app, command.select, fillers);
       methods.push_back(
           pipeline_method(inpainter + (trends.size() > 1 ? "+" + trend_name(trend) : ""), options));
     }
@@ -829,7 +832,9 @@ void add_bench_command(CLI::App& app, Runner& runner) {
                   "Report on the shards in these directories (written by --shard) as the "
                   "unsharded run would, into --out DIR");
   sub->callback([command, sub, &runner] {
-    command->candidates = candidates_from_arguments(*sub, command->select);
+    command->app = sub;
+    candidates_from_arguments(*sub, command->select,
+                              FillerOptions());  // a bad name is a usage error
     runner = [command] { return run_bench(*command); };
   });
 }

@@ -35,23 +35,23 @@ void add_patch_options(CLI::App* command, HoleSampleOptions& samples) {
       ->capture_default_str();
 }
 
-std::vector<Strategy> strategies_from_arguments(const std::string& filler,
-                                                const std::string& fallback) {
+FillerChain chain_from_arguments(const std::string& filler, const std::string& fallback,
+                                 const FillerOptions& fillers) {
   try {
-    return strategy_chain(filler_from_name(filler), fallback);
+    return make_filler_chain(filler, fallback, fillers);
   } catch (const InvalidInput& error) {
     throw UsageError(std::string("--filler/--fallback: ") + error.what());
   }
 }
 
-std::vector<Candidate> candidates_from_arguments(const CLI::App& command,
-                                                 const std::string& select) {
+FillerChain candidates_from_arguments(const CLI::App& command, const std::string& select,
+                                      const FillerOptions& fillers) {
   if (command.count("--select") == 0 &&
       (command.count("--filler") || command.count("--fallback"))) {
     return {};
   }
   try {
-    return parse_candidates(select);
+    return make_fillers(select, fillers);
   } catch (const InvalidInput& error) {
     throw UsageError(std::string("--select: ") + error.what());
   }

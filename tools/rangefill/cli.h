@@ -12,6 +12,7 @@
 
 #include "rangefill/eval/patches.h"
 #include "rangefill/io/mesh_io.h"
+#include "rangefill/repair/filler_options.h"
 #include "rangefill/repair/pipeline.h"
 
 namespace rangefill::cli {
@@ -82,16 +83,16 @@ inline const char* const kValidationMeshes = "bunny.ply,fandisk.ply,homer.ply";
 /// --patches, --patch-size and --seed of the commands that cut depth patches from meshes.
 void add_patch_options(CLI::App* command, HoleSampleOptions& samples);
 
-/// RepairOptions::strategies from --filler ("plane", "front") and --fallback (strategy_chain);
-/// throws UsageError on an unknown name.
-std::vector<Strategy> strategies_from_arguments(const std::string& filler,
-                                                const std::string& fallback);
+/// RepairOptions::chain from --filler and --fallback (make_filler_chain), each filler made with
+/// its part of `fillers`; throws UsageError on an unknown name.
+FillerChain chain_from_arguments(const std::string& filler, const std::string& fallback,
+                                 const FillerOptions& fillers);
 
-/// RepairOptions::selection's candidates from --select (parse_candidates): none when --filler or
+/// RepairOptions::selection's candidates from --select (make_fillers): none when --filler or
 /// --fallback is given without --select, so that the chain named fills every hole. Throws
 /// UsageError on an unknown name.
-std::vector<Candidate> candidates_from_arguments(const CLI::App& command,
-                                                 const std::string& select);
+FillerChain candidates_from_arguments(const CLI::App& command, const std::string& select,
+                                      const FillerOptions& fillers);
 
 /// SIGINT, SIGTERM and SIGHUP no longer kill the process where it stands: a thread of their own
 /// takes them and exits with 128 + the signal's number, but never while an OutputGuard is held, so

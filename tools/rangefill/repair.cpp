@@ -19,16 +19,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Defaults are RepairOptions' own: the library and the command repair alike.
+// Defaults are RepairOptions' and FillerOptions' own: the library and the command repair alike.
 struct RepairCommand {
   RepairOptions options;
+  FillerOptions fillers;  // RepairOptions' chain and candidates are made with these
   std::string input, output, report, debug_dir, holes = "all", batch, out_dir, shard = "0/1";
-  std::string trend = trend_name(options.trend);
-  std::string filler = filler_name(kDefaultFiller);  // RepairOptions' strategies: the chain of
-  std::string fallback = kDefaultFallbacks;          // this filler and these fallbacks
+  std::string trend = trend_name(fillers.plane.trend);
+  std::string filler = kDefaultFiller;       // RepairOptions' chain: this filler and these
+  std::string fallback = kDefaultFallbacks;  // fallbacks
   std::string mesher = "greedy";
   std::string select = kDefaultCandidates;
   bool in_place = false, json = false, ascii = false, fill_all = false;
+  const CLI::App* app = nullptr;  // the sub-command, for which options were given
 };
 
 std::vector<int> parse_hole_ids(const std::string& text) {
@@ -87,7 +89,7 @@ nlohmann::json report_json(const RepairCommand& command, const RepairResult& res
   nlohmann::json report = reports::repair_report(result);
   report["input"] = command.input;
   report["output"] = command.output;
-  report["inpainter"] = command.options.inpainter;
+  report["inpainter"] = command.fillers.plane.inpainter;
   report["trend"] = command.trend;
   report["filler"] = command.filler;
   report["mesher"] = command.mesher;
@@ -116,9 +118,9 @@ void print_summary(const RepairResult& result) {
               "masked", "new v", "seconds", "result");
   for (const HoleReport& hole : result.holes) {
     const std::string size =
-        std::to_string(hole.image_size.width) + "x" + std::to_string(hole.image_size.height);
+        std::to_string(hole.image.width) + "x" + std::to_string(hole.image.height);
     std::printf("%5d %4d %9d %4d %11s %7d %8d %8.3f  %s\n", hole.id, hole.pass,
-                hole.boundary_vertices, hole.rings, size.c_str(), hole.masked_pixels,
+                hole.boundary_vertices, hole.rings, size.c_str(), hole.image.masked_pixels,
                 hole.new_vertices, hole.seconds, result_text(hole).c_str());
   }
 }
@@ -176,11 +178,13 @@ void check_arguments(RepairCommand& command) {
     refuse_same_file(command.report, command.output, "output");
   }
   format_from_extension(command.output);  // fail before the work, not after
-  check_inpainter(command.options.inpainter, "--inpainter");
+  check_inpainter(command.fillers.plane.inpainter, "--inpainter");
   command.options.holes = parse_hole_ids(command.holes);
-  command.options.trend = trend_from_name(command.trend);
+  command.fillers.plane.trend = trend_from_name(command.trend);
   if (command.fill_all) command.options.border_share = 0;
-  command.options.strategies = strategies_from_arguments(command.filler, command.fallback);
+  command.options.chain = chain_from_arguments(command.filler, command.fallback, command.fillers);
+  command.options.selection.candidates =
+      candidates_from_arguments(*command.app, command.select, command.fillers);
 }
 
 // The input mesh; a point cloud meshed first (unless --mesher none, which refuses it).
@@ -360,7 +364,9 @@ int run_repair(RepairCommand& command) {
 void add_repair_command(CLI::App& app, Runner& runner) {
   auto command = std::make_shared<RepairCommand>();
   RepairOptions& options = command->options;
+  PlaneFillerOptions& plane = command->fillers.plane;
   CLI::App* sub = app.add_subcommand("repair", "Fill the holes of a mesh (Pérez et al. pipeline)");
+  command->app = sub;
   sub->add_option("input", command->input, "Mesh with holes (.ply, .obj, .off, .stl)");
   sub->add_option("-o,--output", command->output, "Repaired mesh (format from the extension)");
   sub->add_option("--batch", command->batch, "Repair every mesh of this directory");
@@ -370,20 +376,22 @@ void add_repair_command(CLI::App& app, Runner& runner) {
                   "(0-based), for job arrays")
       ->capture_default_str();
   sub->add_option("--filler", command->filler,
-                  "plane: range images (Pérez et al.); front: advancing front (Tekumalla & Cohen); "
-                  "fairing: Liepa's patch refined and faired (CGAL)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"plane", "front", "fairing"}));
+                  "What fills a hole first: fairing (Liepa's patch refined and faired, CGAL; "
+                  "fairing:c0|c1|c2 of that continuity), plane (range images, Pérez et al.; "
+                  "plane:BACKEND), front (advancing front, Tekumalla & Cohen), plane-in-part, "
+                  "liepa or least-area")
+      ->capture_default_str();
   sub->add_option(
          "--fallback", command->fallback,
-         "What takes a hole the filler cannot fill, tried in the order listed: fairing, "
-         "plane, front, least-area (a patch of its loop without new vertices: Liepa's weight, "
-         "else least area), or none")
+         "What takes a hole the filler cannot fill, tried in the order listed: any filler, "
+         "least-area standing for liepa,least-area (a patch of its loop without new vertices: "
+         "Liepa's weight, else least area), or none")
       ->capture_default_str();
   sub->add_option("--select", command->select,
                   "Candidates scored on each hole by a band test (a band of known faces hidden "
                   "round the hole, the enlarged hole filled by each, the fill nearest the band "
-                  "wins), tried before the filler: fairing[:c0|:c1|:c2], plane[:BACKEND], front; "
+                  "wins), tried before the filler: any filler (fairing[:c0|:c1|:c2], "
+                  "plane[:BACKEND], front, ...); "
                   "or none (the default when --filler or --fallback is given without --select)")
       ->capture_default_str();
   sub->add_option("--select-band", options.selection.band_rings,
@@ -395,14 +403,13 @@ void add_repair_command(CLI::App& app, Runner& runner) {
                   "Gopi & Krishnan) meshes it first; none refuses it")
       ->capture_default_str()
       ->check(CLI::IsMember({"greedy", "none"}));
-  sub->add_option("--inpainter", options.inpainter, inpainter_help())->capture_default_str();
-  add_foe_inference_options(sub, options.inpainting);
-  sub->add_option("--alpha", options.inpainting.mls_alpha,
+  sub->add_option("--inpainter", plane.inpainter, inpainter_help())->capture_default_str();
+  add_foe_inference_options(sub, plane.inpainting);
+  sub->add_option("--alpha", plane.inpainting.mls_alpha,
                   "mls: alpha of the weights exp(-alpha d^2)/d^2 (eq. 6), d in pixels")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 100.0));
-  sub->add_option("--radius", options.inpainting.radius,
-                  "Neighbourhood radius in pixels (telea, ns)")
+  sub->add_option("--radius", plane.inpainting.radius, "Neighbourhood radius in pixels (telea, ns)")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 100.0));
   sub->add_option(
@@ -428,7 +435,7 @@ void add_repair_command(CLI::App& app, Runner& runner) {
   sub->add_option("--passes", options.passes, "Rounds of detect-fill-merge")
       ->capture_default_str()
       ->check(CLI::Range(1, 100));
-  sub->add_option("--beta", options.image.beta, "Grid step q = beta * d_m (eq. 6)")
+  sub->add_option("--beta", plane.image.beta, "Grid step q = beta * d_m (eq. 6)")
       ->capture_default_str()
       ->check(CLI::Range(0.05, 4.0));
   sub->add_option("--gamma", options.zone.gamma_degrees,
@@ -451,10 +458,7 @@ void add_repair_command(CLI::App& app, Runner& runner) {
   sub->add_flag("--ascii", command->ascii, "Write ASCII instead of binary (PLY, STL)");
   sub->add_flag("--in-place", command->in_place, "Allow OUT to be the input file");
   sub->add_flag("--json", command->json, "Print the report as JSON instead of a table");
-  sub->callback([command, sub, &runner] {
-    command->options.selection.candidates = candidates_from_arguments(*sub, command->select);
-    runner = [command] { return run_repair(*command); };
-  });
+  sub->callback([command, sub, &runner] { runner = [command] { return run_repair(*command); }; });
 }
 
 }  // namespace rangefill::cli

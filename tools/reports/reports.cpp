@@ -15,7 +15,8 @@ std::string failure_of(const RepairResult& result, int id) {
 nlohmann::json hole_json(const HoleReport& hole) {
   nlohmann::json attempts = nlohmann::json::array();
   for (const Attempt& attempt : hole.attempts) {
-    attempts.push_back({{"strategy", attempt.strategy ? strategy_name(*attempt.strategy) : ""},
+    attempts.push_back({{"strategy", attempt.method},
+                        {"filler", attempt.filler},
                         {"refusal", refusal_name(attempt.refused.refusal)},
                         {"detail", attempt.refused.detail}});
   }
@@ -25,6 +26,8 @@ nlohmann::json hole_json(const HoleReport& hole) {
                          {"band_rms", score.score ? nlohmann::json(*score.score) : nullptr},
                          {"seconds", score.seconds}});
   }
+  nlohmann::json steps = nlohmann::json::object();
+  for (const StepSeconds& step : hole.steps) steps[step.step] = step.seconds;
   return {{"id", hole.id},
           {"pass", hole.pass},
           {"loop", hole.loop},
@@ -32,28 +35,21 @@ nlohmann::json hole_json(const HoleReport& hole) {
           {"area", hole.area},
           {"rings", hole.rings},
           {"zone_faces", hole.zone_faces},
-          {"image_size", {hole.image_size.width, hole.image_size.height}},
-          {"masked_pixels", hole.masked_pixels},
-          {"gap_pixels", hole.gap_pixels},
-          {"trend", trend_name(hole.trend)},
+          {"image_size", {hole.image.width, hole.image.height}},
+          {"masked_pixels", hole.image.masked_pixels},
+          {"gap_pixels", hole.image.gap_pixels},
+          {"trend", hole.image.trend},
           {"new_vertices", hole.new_vertices},
           {"new_faces", hole.new_faces},
           {"seconds", hole.seconds},
-          {"stage_seconds",
-           {{"zone", hole.stages.zone},
-            {"planes", hole.stages.planes},
-            {"image", hole.stages.image},
-            {"inpainting", hole.stages.inpainting},
-            {"stitching", hole.stages.stitching},
-            {"checking", hole.stages.checking},
-            {"front", hole.stages.front},
-            {"fairing", hole.stages.fairing}}},
+          {"stage_seconds", steps},
           {"method", hole.method},
+          {"filler", hole.filler},
           {"selection", selection},
           {"selected", hole.selected},
           {"other_holes", hole.other_holes},
           {"filled", hole.filled},
-          {"rim_support", hole.rim_support},
+          {"rim_support", hole.image.rim_support},
           {"attempts", attempts},
           {"failure", hole.failure}};
 }

@@ -31,7 +31,7 @@ struct HoleScore {
   std::string method;    // of the pass-0 fill (HoleReport::method)
   std::string selected;  // the candidate whose band test won (HoleReport::selected), if any
   int zone_faces = 0;
-  HoleReport::Stages stages;
+  std::vector<StepSeconds> steps;  // HoleReport::steps
 };
 
 /// Scores a repair of `punched.mesh` against the faces removed from `original`: each punched hole
@@ -46,7 +46,6 @@ std::vector<HoleScore> score_repair(const Mesh& original, const PunchResult& pun
 std::vector<int> punched_loops(const Mesh& original, const PunchResult& punched);
 
 /// What the benchmark compares: our pipeline with one back-end, or a baseline.
-using ImagesCallback = std::function<void(const HoleImages&)>;
 struct BenchmarkMethod {
   std::string name;
   /// Fills the loop with id `loop` of `mesh` and returns the repair, its generated elements marked

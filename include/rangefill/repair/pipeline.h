@@ -1,5 +1,6 @@
 // The repair pipeline (Pérez et al., Sections IV–IX): the loops to fill are chosen, each is filled
-// by the fill chain (fill_chain.h) against the same mesh, the fills are merged (Section IX), and
+// by its band test's winner or the fill chain (selection.h, fill_chain.h) against the same mesh,
+// every fill passes the acceptance step (acceptance.h), the fills are merged (Section IX), and
 // holes are looked for again, pass after pass.
 #pragma once
 
@@ -12,14 +13,20 @@
 #include "rangefill/core/parallel.h"
 #include "rangefill/core/topology.h"
 #include "rangefill/repair/fill.h"
-#include "rangefill/repair/fill_chain.h"
+#include "rangefill/repair/filler.h"
+#include "rangefill/repair/fillers.h"
+#include "rangefill/repair/hole_report.h"
 #include "rangefill/repair/holes.h"
 #include "rangefill/repair/selection.h"
+#include "rangefill/repair/zone.h"
 
 namespace rangefill {
 
-/// How holes are chosen and filled: the fill chain's options and which loops, in how many passes.
-struct RepairOptions : FillOptions {
+/// How holes are chosen and filled: the fillers (each made with its own options, fillers.h), which
+/// loops, in how many passes.
+struct RepairOptions {
+  FillerChain chain = make_filler_chain(kDefaultFiller, kDefaultFallbacks);  // tried in order
+  ZoneOptions zone;        // each hole's zone of interest (Section V), what its fillers read
   std::vector<int> holes;  // ids of the input's loops to fill (each must exist: else
                            // InvalidInput); empty = every loop but the borders
   /// With `holes` empty, input loops for which is_border(loop, border_share) holds are left open
@@ -28,12 +35,12 @@ struct RepairOptions : FillOptions {
   int max_hole_edges = 0;      // loops with more boundary edges are left open; 0 = no limit
   double max_hole_area = 0;    // loops with a larger area are left open; 0 = no limit
   SelectionOptions selection;  // each hole's filler chosen by a band test (selection.h), tried
-                               // before `strategies`; no candidates: the chain alone
+                               // before `chain`; no candidates: the chain alone
   int passes = 8;  // rounds of detect–fill–merge (Section IX); complex holes take one per part
   int threads = hardware_threads();  // holes of a pass filled at once; the result does not
                                      // depend on it
-  std::function<void(const HoleReport&)> on_hole;  // after each hole (any thread, serialised);
-                                                   // on_images is serialised too
+  std::function<void(const HoleReport&)> on_hole;  // after each hole (any thread, serialised)
+  ImagesCallback on_images;  // after each inpainting (plane_filler.h; serialised too)
 };
 
 /// Why a boundary loop of the repaired mesh is open.
@@ -41,7 +48,7 @@ enum class OpenReason {
   border,           // an input loop taken for the border of an open surface (border_share)
   not_selected,     // an input loop that RepairOptions::holes does not list
   over_size_limit,  // an input loop over max_hole_edges or max_hole_area
-  failed,           // a loop that was to be filled: no strategy could fill it, or what is left of
+  failed,           // a loop that was to be filled: no filler could fill it, or what is left of
                     // a hole filled in part when the passes ran out
 };
 

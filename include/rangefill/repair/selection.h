@@ -12,30 +12,18 @@
 #include <vector>
 
 #include "rangefill/core/mesh.h"
-#include "rangefill/inpaint/inpainter.h"
 #include "rangefill/repair/fill.h"
 #include "rangefill/repair/fill_chain.h"
+#include "rangefill/repair/fillers.h"
 #include "rangefill/repair/holes.h"
 
 namespace rangefill {
-
-/// A filler that may fill a hole: a strategy of the fill chain and its variant.
-struct Candidate {
-  std::string name;  // as listed: "fairing", "fairing:c1", "plane:telea", "front", ...
-  Strategy strategy = Strategy::fairing;
-  int continuity = 2;     // fairing: C0, C1 or C2 across the loop (fairing:c0, :c1, :c2)
-  std::string inpainter;  // plane: the back-end (inpainter.h), "plane" alone: FillOptions'
-};
-
-/// The candidates of a comma-separated list of "fairing[:c0|:c1|:c2]", "plane[:BACKEND]" and
-/// "front", or none for "none" or "". Throws InvalidInput on another name or a repeated one.
-std::vector<Candidate> parse_candidates(const std::string& list);
 
 /// The default candidates: what measured best on the tuning meshes (DEVELOPERS.md).
 inline constexpr const char* kDefaultCandidates = "fairing,fairing:c1,plane:telea";
 
 struct SelectionOptions {
-  std::vector<Candidate> candidates = parse_candidates(kDefaultCandidates);  // none: no selection
+  FillerChain candidates = make_fillers(kDefaultCandidates);  // none: no selection
   int band_rings = 2;  // rings of known faces hidden around the hole
 };
 
@@ -56,26 +44,12 @@ std::optional<BandTest> hide_band(const SurfaceContext& surface, const BoundaryL
 /// The root mean square distance from the test's hidden points to the fill of its hole.
 double band_distance(const BandTest& test, const Fill& fill);
 
-/// The candidates with the inpainter each needs, made once for a repair.
-struct CandidateFillers {
-  CandidateFillers(const std::vector<Candidate>& candidates, const std::string& default_inpainter,
-                   const InpainterOptions& inpainting);
-  std::vector<Candidate> candidates;
-  std::vector<std::unique_ptr<Inpainter>> inpainters;  // one per candidate: plane's, else null
-
-  /// The inpainter candidate `i` fills with: its own, else `fallback` (the repair's).
-  const Inpainter& inpainter_of(size_t i, const Inpainter& fallback) const {
-    return inpainters[i] ? *inpainters[i] : fallback;
-  }
-};
-
 /// Fills `hole` as fill_by_chain does, the chain preceded by the candidates in the order of their
 /// band test's scores (candidates refused on the test come after, in their order). Without
 /// candidates, or when hide_band gives no test, it is fill_by_chain. `report.selection` receives
 /// each candidate's score.
 std::optional<Fill> fill_by_selection(const SurfaceContext& surface, const BoundaryLoop& hole,
-                                      const CandidateFillers& fillers, int band_rings,
-                                      const Inpainter& inpainter, const FillOptions& options,
-                                      bool last_pass, HoleReport& report);
+                                      const SelectionOptions& selection, const FillerChain& chain,
+                                      const ChainOptions& options, HoleReport& report);
 
 }  // namespace rangefill

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "rangefill/inpaint/inpainter.h"
 #include "rangefill/repair/range_image.h"
 
 namespace rangefill {
@@ -56,5 +57,14 @@ Trend fit_trend(const RangeImage& image, TrendKind kind, double ring = 6);
 /// 0 for values that are not heights (then sphere and automatic fit the quadric).
 Trend fit_trend(const cv::Mat& values, const cv::Mat& labels, TrendKind kind, double ring = 6,
                 double height_unit = 0);
+
+/// The trend of `values` (fit_trend over the known pixels of `labels`) removed, the residual
+/// restored by `inpainter` under `mask`, the trend added back. Outside the zone (kOutsidePixel)
+/// the image holds the nearest zone value, no surface: there the residual is 0 (the trend is the
+/// best guess), else back-ends that read beyond the rim (mls) take the gap between a flat extension
+/// and a curved trend for surface. `fitted` receives the trend actually fitted.
+cv::Mat inpaint_residual(const cv::Mat& values, const cv::Mat& labels, const cv::Mat& mask,
+                         const Inpainter& inpainter, TrendKind kind, double ring,
+                         double height_unit, TrendKind& fitted);
 
 }  // namespace rangefill
