@@ -35,9 +35,9 @@
 #include "rangefill/depth/fill_depth.h"
 #include "rangefill/eval/baselines.h"
 #include "rangefill/eval/punch.h"
+#include "rangefill/hole/holes.h"
 #include "rangefill/io/depth_io.h"
 #include "rangefill/io/mesh_io.h"
-#include "rangefill/repair/holes.h"
 #include "rangefill/repair/pipeline.h"
 
 extern char** environ;

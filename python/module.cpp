@@ -14,14 +14,14 @@
 #include "rangefill/core/errors.h"
 #include "rangefill/core/topology.h"
 #include "rangefill/depth/fill_depth.h"
+#include "rangefill/hole/holes.h"
 #include "rangefill/inpaint/inpainter.h"
 #include "rangefill/io/depth_io.h"
 #include "rangefill/io/mesh_io.h"
+#include "rangefill/point_cloud/point_cloud.h"
 #include "rangefill/repair/filler_options.h"
-#include "rangefill/repair/holes.h"
 #include "rangefill/repair/pipeline.h"
-#include "rangefill/repair/point_cloud.h"
-#include "reports.h"
+#include "rangefill/reports/reports.h"
 
 namespace py = pybind11;
 
@@ -339,7 +339,7 @@ depth: H×W uint16 (millimetres, 0 invalid) or float32 (metres, 0 or NaN invalid
 mask: H×W bool or uint8, the pixels to fill (non-zero); None fills every invalid pixel.
 color: H×W×3 uint8 (RGB or BGR) or H×W uint8 grey, registered to the depth, or None: `rangefill
 depth --color`.
-The options and their defaults are `rangefill depth`'s (docs/depth-maps.md): inpainter, the
+The options and their defaults are `rangefill depth`'s (docs/depth.md): inpainter, the
 back-end (backends()) for holes of up to backend_max_pixels, larger ones along lines, or 'lines'
 for every hole; fast, fill along lines without looking for occluding edges hole by
 hole (a few ms a VGA frame); threads, holes filled at once (every hardware thread; the result does not depend on

@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
-# Fresh machine, one command: install what is missing, build, repair the bundled sample scan.
+# Fresh machine, one command: install what the binary needs, build it (not the tests: the test
+# command builds those), repair the bundled sample scan into out/ with a picture of each repaired
+# hole, and print what the result is.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
-"$root/scripts/install-deps.sh"
-"$root/scripts/build.sh"
+"$root/scripts/install-deps.sh" --demo
+RANGEFILL_TARGETS=rangefill_cli "$root/scripts/build.sh" -DRANGEFILL_BUILD_TESTS=OFF \
+  -DRANGEFILL_BUILD_BENCHMARKS=OFF -DRANGEFILL_BUILD_PYTHON=OFF
 mkdir -p "$root/out"
 "$root/build/bin/rangefill" repair "$root/data/bunny-bottom.ply" -o "$root/out/bunny-bottom-repaired.ply" \
-  --report "$root/out/bunny-bottom-report.json" --debug-dir "$root/out/bunny-bottom-images"
+  --report "$root/out/bunny-bottom-report.json" --debug-dir "$root/out/bunny-bottom-holes"
 "$root/build/bin/rangefill" info "$root/out/bunny-bottom-repaired.ply"

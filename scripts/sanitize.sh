@@ -13,7 +13,8 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 build="$root/build-sanitize"
 "$root/scripts/install-deps.sh"
 cmake -S "$root" -B "$build" -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=Release \
-  -DCMAKE_CXX_FLAGS_RELEASE=-O1 -DRANGEFILL_SANITIZE=ON -DRANGEFILL_BUILD_BENCHMARKS=OFF >/dev/null
+  -DCMAKE_CXX_FLAGS_RELEASE=-O1 -DRANGEFILL_SANITIZE=ON -DRANGEFILL_BUILD_BENCHMARKS=OFF \
+  -DRANGEFILL_WERROR="${RANGEFILL_WERROR:-OFF}" >/dev/null
 cmake --build "$build" -j "$(nproc)"
 cd "$build"
 exclude='^(FillDepth\.BeatsCvInpaintOnSensorFrames|Benchmark\.PunchedSharedMeshesAreRepaired)$'

@@ -7,12 +7,12 @@
 #include <vector>
 
 #include "rangefill/core/mesh.h"
-#include "rangefill/repair/fill.h"
+#include "rangefill/hole/fill.h"
+#include "rangefill/hole/holes.h"
+#include "rangefill/hole/zone.h"
+#include "rangefill/image/plane_filler.h"
 #include "rangefill/repair/fillers.h"
-#include "rangefill/repair/holes.h"
 #include "rangefill/repair/pipeline.h"
-#include "rangefill/repair/plane_filler.h"
-#include "rangefill/repair/zone.h"
 
 namespace rangefill::testing {
 

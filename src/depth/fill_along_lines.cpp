@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "depth/color_guide.h"
+#include "rangefill/core/depth_image.h"
 #include "rangefill/core/parallel.h"
-#include "rangefill/depth/depth_image.h"
 
 namespace rangefill {
 

@@ -13,7 +13,7 @@
 #include "depth/fill_along_lines.h"
 #include "rangefill/core/errors.h"
 #include "rangefill/core/parallel.h"
-#include "rangefill/repair/range_image.h"
+#include "rangefill/inpaint/pixel_labels.h"
 
 namespace rangefill {
 

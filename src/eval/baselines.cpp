@@ -9,10 +9,10 @@
 
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 
+#include "core/cgal_surface_mesh.h"
 #include "rangefill/core/errors.h"
 #include "rangefill/core/topology.h"
-#include "rangefill/repair/holes.h"
-#include "repair/cgal_surface_mesh.h"
+#include "rangefill/hole/holes.h"
 
 namespace rangefill {
 

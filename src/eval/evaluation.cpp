@@ -7,8 +7,8 @@
 #include <numeric>
 
 #include "rangefill/core/errors.h"
-#include "rangefill/repair/holes.h"
-#include "rangefill/repair/plane_filler.h"
+#include "rangefill/hole/holes.h"
+#include "rangefill/image/plane_filler.h"
 
 namespace rangefill {
 

@@ -7,7 +7,7 @@
 #include "core/cgal_triangles.h"
 #include "rangefill/core/errors.h"
 #include "rangefill/core/topology.h"
-#include "rangefill/repair/holes.h"
+#include "rangefill/hole/holes.h"
 
 namespace rangefill {
 

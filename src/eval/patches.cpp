@@ -8,8 +8,8 @@
 
 #include "rangefill/core/topology.h"
 #include "rangefill/eval/punch.h"
-#include "rangefill/repair/holes.h"
-#include "rangefill/repair/range_image.h"
+#include "rangefill/hole/holes.h"
+#include "rangefill/image/range_image.h"
 
 namespace rangefill {
 
@@ -85,7 +85,8 @@ std::vector<DepthPatch> depth_patches(const Mesh& mesh, const PatchOptions& opti
     frame.rotation.row(1) = normal.cross(u).transpose();
     frame.rotation.row(2) = normal.transpose();
     frame.origin = mesh.positions[centre];
-    RangeImage image = rasterize_zone(mesh, zone, BoundaryLoop{}, frame, mean_edge, image_options);
+    RangeImage image = rasterize_zone(mesh, zone, BoundaryLoop{}, HoleInPlane{frame, {}}, mean_edge,
+                                      image_options);
     fill_small_gaps(image);
     const int col = static_cast<int>(std::lround(-image.x_min / image.step)) - options.size / 2;
     const int row = static_cast<int>(std::lround(image.y_max / image.step)) - options.size / 2;

@@ -8,7 +8,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "rangefill/depth/depth_image.h"
+#include "rangefill/core/depth_image.h"
 
 namespace rangefill {
 

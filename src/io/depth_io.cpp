@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "io/image_codecs.h"
+#include "rangefill/core/depth_image.h"
 #include "rangefill/core/errors.h"
-#include "rangefill/depth/depth_image.h"
 #include "rangefill/io/mesh_io.h"
 
 namespace rangefill {

@@ -19,14 +19,6 @@ ReadResult parse_obj(std::string_view bytes, const std::string& name);
 ReadResult parse_off(std::string_view bytes, const std::string& name);
 ReadResult parse_stl(std::string_view bytes, const std::string& name);
 
-/// The capacity a parser reserves for an array of `count` elements: a 64th more, room for the
-/// vertices and faces a repair appends, so that it moves no array of the mesh. Moved last, a
-/// large mesh's arrays landed above everything the repair had allocated: a million-face repair's
-/// peak memory was 13 MB (a sixth) higher.
-inline size_t with_room_for_fills(size_t count) {
-  return count + count / 64;
-}
-
 /// Where a serializer appends a file's bytes (bytes()): handed to `drain` and emptied each time a
 /// record ends past a megabyte, and at flush(); without a drain they stay, the whole file.
 class ByteSink {

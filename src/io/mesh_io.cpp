@@ -131,11 +131,18 @@ class FileBytes {
 
 }  // namespace
 
-ReadResult read_mesh(const fs::path& path) {
+ReadResult read_mesh(const fs::path& path, const ReadOptions& options) {
   const MeshFormat format = format_from_extension(path);
-  const FileBytes file(path);
-  if (file.bytes().empty()) throw InvalidInput(path.string() + ": file is empty");
-  return parse_mesh(file.bytes(), format, path.string());
+  ReadResult result = [&] {
+    const FileBytes file(path);
+    if (file.bytes().empty()) throw InvalidInput(path.string() + ": file is empty");
+    return parse_mesh(file.bytes(), format, path.string());
+  }();
+  if (options.spare_share > 0) {
+    reserve_more(result.mesh, static_cast<int>(options.spare_share * result.mesh.vertex_count()),
+                 static_cast<int>(options.spare_share * result.mesh.face_count()));
+  }
+  return result;
 }
 
 namespace {
@@ -295,7 +302,7 @@ void FaceBuilder::finish() {
     result_.warnings.push_back(name_ + ": " + std::to_string(polygons_triangulated_) +
                                " polygons with more than 3 vertices were triangulated");
   }
-  result_.mesh.face_hole.reserve(with_room_for_fills(result_.mesh.triangles.size()));
+  result_.mesh.face_hole.reserve(result_.mesh.triangles.size());
   result_.mesh.face_hole.resize(result_.mesh.triangles.size(), kOriginal);
 }
 

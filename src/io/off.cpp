@@ -75,7 +75,7 @@ class OffParser {
     Mesh& mesh = result_.mesh;
     mesh.storage.position = ScalarType::float64;
     mesh.storage.normal = ScalarType::float64;
-    mesh.vertex_hole.reserve(with_room_for_fills(mesh.positions.size()));
+    mesh.vertex_hole.reserve(mesh.positions.size());
     mesh.vertex_hole.assign(mesh.positions.size(), kOriginal);
     return std::move(result_);
   }
@@ -164,8 +164,8 @@ class OffParser {
     const size_t colour_start = normals_ ? 6 : 3;
     const std::string layout =
         std::string("x y z") + (normals_ ? " nx ny nz" : "") + (colours_ ? " r g b [a]" : "");
-    mesh.positions.reserve(with_room_for_fills(vertex_count_));
-    if (normals_) mesh.normals.reserve(with_room_for_fills(vertex_count_));
+    mesh.positions.reserve(vertex_count_);
+    if (normals_) mesh.normals.reserve(vertex_count_);
     if (colours_) vertex_colours_.components.reserve(vertex_count_);
     for (long long v = 0; v < vertex_count_; ++v) {
       if (!next_line()) {
@@ -192,7 +192,7 @@ class OffParser {
 
   void read_faces() {
     FaceBuilder faces(result_, name_);
-    result_.mesh.triangles.reserve(with_room_for_fills(face_count_));
+    result_.mesh.triangles.reserve(face_count_);
     face_colours_.components.reserve(face_count_);
     std::vector<long long> polygon;
     for (long long f = 0; f < face_count_; ++f) {
@@ -269,7 +269,7 @@ class OffParser {
     Mesh& mesh = result_.mesh;
     if (colours_) {
       mesh.storage.color = vertex_colours_.type();
-      mesh.colors.reserve(with_room_for_fills(vertex_count_));
+      mesh.colors.reserve(vertex_count_);
       for (size_t v = 0; v < vertex_colours_.components.size(); ++v) {
         mesh.colors.emplace_back(vertex_colours_.normalised(v, 0), vertex_colours_.normalised(v, 1),
                                  vertex_colours_.normalised(v, 2));

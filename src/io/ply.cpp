@@ -413,7 +413,7 @@ std::vector<VertexSlot> vertex_slots(const PlyElement& element, BodyReader& body
     if (slots[i] == VertexSlot::extra) {
       extra_index[i] = static_cast<int>(mesh.vertex_properties.size());
       mesh.vertex_properties.push_back({property.name, property.type, {}});
-      mesh.vertex_properties.back().values.reserve(with_room_for_fills(element.count));
+      mesh.vertex_properties.back().values.reserve(element.count);
     }
     if (slots[i] == VertexSlot::skip) {
       result.warnings.push_back(name + ": vertex list property '" + property.name + "' ignored");
@@ -433,10 +433,10 @@ void read_vertices(const PlyElement& element, BodyReader& body, ReadResult& resu
                       has_slot(slots, VertexSlot::blue);
   const double color_scale = is_integer(mesh.storage.color) ? 1.0 / 255.0 : 1.0;
 
-  mesh.positions.reserve(with_room_for_fills(element.count));
-  if (normals) mesh.normals.reserve(with_room_for_fills(element.count));
-  if (colors) mesh.colors.reserve(with_room_for_fills(element.count));
-  mesh.vertex_hole.reserve(with_room_for_fills(element.count));
+  mesh.positions.reserve(element.count);
+  if (normals) mesh.normals.reserve(element.count);
+  if (colors) mesh.colors.reserve(element.count);
+  mesh.vertex_hole.reserve(element.count);
   for (long long v = 0; v < element.count; ++v) {
     body.set_context(&element.name, v);
     Vec3 position = Vec3::Zero(), normal = Vec3::Zero();
@@ -523,8 +523,8 @@ void read_faces(const PlyElement& element, BodyReader& body, ReadResult& result,
   FaceBuilder faces(result, name);
   std::vector<long long> polygon;
   std::vector<double> values(element.properties.size());
-  mesh.triangles.reserve(with_room_for_fills(element.count));
-  mesh.face_hole.reserve(with_room_for_fills(element.count));
+  mesh.triangles.reserve(element.count);
+  mesh.face_hole.reserve(element.count);
   for (long long f = 0; f < element.count; ++f) {
     body.set_context(&element.name, f);
     for (size_t i = 0; i < element.properties.size(); ++i) {

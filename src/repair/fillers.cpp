@@ -3,8 +3,8 @@
 #include <algorithm>
 
 #include "rangefill/core/errors.h"
+#include "rangefill/fillers/loop_patch_filler.h"
 #include "rangefill/repair/filler_options.h"
-#include "rangefill/repair/loop_patch_filler.h"
 
 namespace rangefill {
 

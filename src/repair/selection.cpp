@@ -8,7 +8,7 @@
 
 #include "core/cgal_triangles.h"
 #include "rangefill/core/errors.h"
-#include "rangefill/repair/zone.h"
+#include "rangefill/hole/zone.h"
 
 namespace rangefill {
 

@@ -1,8 +1,8 @@
 // Builds a grid with one missing quad through the installed API and checks that it finds 2 loops.
 #include <cstdio>
 
+#include <rangefill/hole/holes.h>
 #include <rangefill/io/mesh_io.h>
-#include <rangefill/repair/holes.h>
 
 int main() {
   using namespace rangefill;

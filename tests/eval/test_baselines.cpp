@@ -11,7 +11,7 @@
 #include "rangefill/core/topology.h"
 #include "rangefill/eval/metrics.h"
 #include "rangefill/eval/punch.h"
-#include "rangefill/repair/holes.h"
+#include "rangefill/hole/holes.h"
 #include "support.h"
 
 namespace rangefill {

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "rangefill/core/errors.h"
-#include "rangefill/repair/fairing.h"
+#include "rangefill/fillers/fairing.h"
 #include "rangefill/repair/filler_options.h"
 #include "rangefill/repair/fillers.h"
 #include "rangefill/repair/pipeline.h"

@@ -20,8 +20,8 @@
 
 namespace rangefill::cli {
 
-Mesh load_mesh(const std::string& path) {
-  ReadResult result = read_mesh(path);
+Mesh load_mesh(const std::string& path, const ReadOptions& options) {
+  ReadResult result = read_mesh(path, options);
   for (const std::string& warning : result.warnings) std::cerr << "warning: " << warning << "\n";
   return std::move(result.mesh);
 }

@@ -111,7 +111,7 @@ class OutputGuard {
 };
 
 /// Reads a mesh, printing its warnings to stderr as "warning: ..." lines.
-Mesh load_mesh(const std::string& path);
+Mesh load_mesh(const std::string& path, const ReadOptions& options = {});
 
 /// True when stdout / stderr is a terminal (progress and colour only then).
 bool stdout_is_terminal();

@@ -10,7 +10,7 @@
 #include "rangefill/core/parallel.h"
 #include "rangefill/depth/fill_depth.h"
 #include "rangefill/io/depth_io.h"
-#include "reports.h"
+#include "rangefill/reports/reports.h"
 
 namespace rangefill::cli {
 

@@ -105,7 +105,7 @@ std::vector<Frame> bench_frames(const DepthBenchCommand& command) {
       cv::Mat millimetres;
       render_depth(scene.mesh, camera, scene.pose, {640, 480}).convertTo(millimetres, CV_16U, 1000);
       frames.push_back(
-          {"rendered", file.stem().string() + "-" + std::to_string(view), millimetres});
+          {"rendered", file.stem().string() + "-" + std::to_string(view), millimetres, {}});
     }
   }
   for (const fs::path& file : files_from_arguments(command.frames, is_depth_image_path)) {

@@ -5,8 +5,8 @@
 
 #include "cli.h"
 #include "rangefill/core/topology.h"
-#include "rangefill/repair/holes.h"
-#include "reports.h"
+#include "rangefill/hole/holes.h"
+#include "rangefill/reports/reports.h"
 
 namespace rangefill::cli {
 

@@ -7,7 +7,7 @@
 #include "cli.h"
 #include "rangefill/core/intersection.h"
 #include "rangefill/core/topology.h"
-#include "rangefill/repair/holes.h"
+#include "rangefill/hole/holes.h"
 
 namespace rangefill::cli {
 

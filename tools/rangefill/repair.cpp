@@ -7,11 +7,12 @@
 #include <sstream>
 
 #include "cli.h"
+#include "hole_pictures.h"
 #include "rangefill/core/errors.h"
 #include "rangefill/io/depth_io.h"
+#include "rangefill/point_cloud/point_cloud.h"
 #include "rangefill/repair/pipeline.h"
-#include "rangefill/repair/point_cloud.h"
-#include "reports.h"
+#include "rangefill/reports/reports.h"
 
 namespace rangefill::cli {
 
@@ -64,6 +65,49 @@ void write_debug_images(const std::string& dir, const HoleImages& images) {
     const OutputGuard guard;
     write_file_atomically(png, stem + suffix);
   }
+}
+
+// --debug-dir after the repair: a picture of each filled hole (hole-<id>.png, before | after); the
+// range images written for holes that the image pipeline then did not fill removed; what was
+// written, or why nothing was, said on stderr.
+void finish_debug_dir(const std::string& dir, const Mesh& input, const RepairResult& result,
+                      const std::set<int>& imaged) {
+  int pictures = 0, image_holes = 0;
+  std::set<std::string> fillers;
+  for (const HoleReport& hole : result.holes) {
+    const bool by_images =
+        hole.filled && imaged.count(hole.id) && hole.method.rfind("plane", 0) == 0;
+    if (imaged.count(hole.id) && !by_images) {
+      for (const char* suffix : {"-depth.png", "-mask.png", "-restored.png"}) {
+        fs::remove(dir + "/hole-" + std::to_string(hole.id) + suffix);
+      }
+    }
+    image_holes += by_images;
+    if (!hole.filled) continue;
+    fillers.insert(hole.filler);
+    const cv::Mat picture = hole_picture(input, result.mesh, hole.id);
+    if (picture.empty()) continue;
+    const OutputGuard guard;
+    write_file_atomically(encode_png(picture), dir + "/hole-" + std::to_string(hole.id) + ".png");
+    ++pictures;
+  }
+  std::string said = "rangefill: note: --debug-dir " + dir + ": ";
+  if (pictures == 0) {
+    said += "no hole was repaired, nothing written";
+  } else {
+    said += "wrote a picture of each of the " + std::to_string(pictures) +
+            " repaired holes (hole-ID.png: before | after, the fill in orange)";
+    if (image_holes > 0) {
+      said += " and the range images of the " + std::to_string(image_holes) +
+              " the image pipeline filled (hole-ID-depth.png, -mask.png, -restored.png)";
+    } else {
+      std::string names;
+      for (const std::string& name : fillers) names += (names.empty() ? "" : ", ") + name;
+      said += "; no range images: no hole was filled by the image pipeline (filled by " + names +
+              "; --filler plane puts it first)";
+    }
+  }
+  std::cerr << said << "\n";
 }
 
 // What `work` returns; its InvalidInput says which file it is about.
@@ -190,7 +234,7 @@ void check_arguments(RepairCommand& command) {
 // The input mesh; a point cloud meshed first (unless --mesher none, which refuses it).
 Mesh load_input(const RepairCommand& command) {
   const Mesher mesher = mesher_from_name(command.mesher);
-  Mesh mesh = load_mesh(command.input);
+  Mesh mesh = load_mesh(command.input, ReadOptions{kFillShare});
   if (!mesh.triangles.empty()) return mesh;
   if (mesher == Mesher::none) {
     throw InvalidInput(command.input + ": a point cloud without faces (--mesher greedy meshes it)");
@@ -225,10 +269,14 @@ FileRepair repair_file(RepairCommand& command) {
                      : "left open");
     std::fflush(stderr);
   };
+  Mesh input;            // kept for --debug-dir's pictures
+  std::set<int> imaged;  // holes whose range images --debug-dir holds
   if (!command.debug_dir.empty()) {
     fs::create_directories(command.debug_dir);
+    input = mesh;
     command.options.on_images = [&](const HoleImages& images) {
       write_debug_images(command.debug_dir, images);
+      imaged.insert(images.id);
     };
   }
 
@@ -255,6 +303,7 @@ FileRepair repair_file(RepairCommand& command) {
               << "; holes that touch them are left open\n";
   }
   print_border_note(result, command.options.border_share);
+  if (!command.debug_dir.empty()) finish_debug_dir(command.debug_dir, input, result, imaged);
   repaired.report = report_json(command, result, seconds);
   if (!command.report.empty()) {
     const OutputGuard guard;
@@ -427,7 +476,8 @@ void add_repair_command(CLI::App& app, Runner& runner) {
                   "Leave open holes of larger area (0: no limit)");
   sub->add_option("--report", command->report, "Write a JSON report of every hole to this file");
   sub->add_option("--debug-dir", command->debug_dir,
-                  "Write each hole's depth, mask and restored images here");
+                  "Write a picture of each repaired hole here (before | after), and the depth, "
+                  "mask and restored images of the holes the image pipeline filled");
   sub->add_option("--threads", options.threads,
                   "Holes filled in parallel (the output does not depend on it)")
       ->capture_default_str()

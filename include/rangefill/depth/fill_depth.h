@@ -7,16 +7,16 @@
 
 #include <opencv2/core.hpp>
 
+#include "rangefill/core/depth_image.h"
 #include "rangefill/core/parallel.h"
-#include "rangefill/depth/depth_image.h"
 #include "rangefill/inpaint/inpainter.h"
-#include "rangefill/repair/trend.h"
+#include "rangefill/inpaint/trend.h"
 
 namespace rangefill {
 
 /// The back-ends' options fill_depth takes by default: InpainterOptions' own, except that foe
 /// refines Telea's fill by at most 10 steps, stopping earlier when one gains less than 3e-3 of E
-/// (why: README, Depth maps).
+/// (why: docs/results.md, Depth bench).
 InpainterOptions depth_inpainting_defaults();
 
 /// DepthFillOptions::inpainter that fills along lines (fill_along_lines' rule), no back-end.
@@ -52,7 +52,7 @@ struct DepthFillOptions {
   /// Depths z1 < z2 lie on different surfaces when z2 > (1 + discontinuity)·z1.
   double discontinuity = 0.05;
   /// Surface fitted to the valid pixels within `trend_ring` pixels of a hole, removed before the
-  /// back-end and added back (trend.h). None by default (why: README, Depth benchmark).
+  /// back-end and added back (trend.h). None by default (why: docs/results.md, Depth bench).
   TrendKind trend = TrendKind::none;
   double trend_ring = 3;
   int margin = 5;  // pixels around each hole given to the back-end (telea and ns read `radius`)

@@ -10,7 +10,7 @@
 
 #include "rangefill/core/mesh.h"
 #include "rangefill/inpaint/inpainter.h"
-#include "rangefill/repair/trend.h"
+#include "rangefill/inpaint/trend.h"
 
 namespace rangefill {
 

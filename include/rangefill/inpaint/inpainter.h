@@ -14,8 +14,9 @@ namespace rangefill {
 struct InpainterOptions {
   double radius = 5;            // neighbourhood radius in pixels (telea, ns)
   std::string model = "depth";  // foe: a shipped model's name or a model file
-  double mls_alpha = 1.0 / 64;  // mls: α of eq. 6 (Wang & Oliveira), per squared pixel (README)
-  double mls_ring = 3;          // mls: known pixels within this many pixels of a hole are fitted
+  double mls_alpha =
+      1.0 / 64;         // mls: α of eq. 6 (Wang & Oliveira), per squared pixel (docs/backends.md)
+  double mls_ring = 3;  // mls: known pixels within this many pixels of a hole are fitted
   /// foe: what inference starts from, "harmonic" (its own Laplace fill) or another back-end's name
   /// (not foe): E is not convex, and the MAP found is the local minimum near the start.
   std::string foe_start = "harmonic";

@@ -22,13 +22,19 @@ struct ReadResult {
   std::vector<std::string> warnings;
 };
 
+struct ReadOptions {
+  /// Room left in every array of the mesh for this share more vertices and faces (0: none), for a
+  /// caller that appends to them without moving them; taken once the file is parsed and its bytes
+  /// released.
+  double spare_share = 0;
+};
+
 /// Reads a mesh whose format is given by the extension. Vertex order, faces and per-vertex colours
 /// and normals are kept; polygons are triangulated (with a warning). The result passes
 /// validate_mesh. Throws IoError (cannot read) or InvalidInput (malformed; the message names the
 /// file and the problem). Memory is bounded by a small multiple of the file size whatever counts a
-/// header declares. A PLY or OFF mesh's arrays have room for a 64th more vertices and faces, so
-/// that `repair(std::move(mesh))` appends its fills without moving them.
-ReadResult read_mesh(const std::filesystem::path& path);
+/// header declares.
+ReadResult read_mesh(const std::filesystem::path& path, const ReadOptions& options = {});
 
 /// Parses a mesh from memory; `name` is used in messages. What read_mesh does after loading the
 /// file.

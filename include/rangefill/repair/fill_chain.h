@@ -5,10 +5,10 @@
 
 #include <optional>
 
-#include "rangefill/repair/acceptance.h"
-#include "rangefill/repair/filler.h"
+#include "rangefill/hole/acceptance.h"
+#include "rangefill/hole/filler.h"
+#include "rangefill/hole/zone.h"
 #include "rangefill/repair/hole_report.h"
-#include "rangefill/repair/zone.h"
 
 namespace rangefill {
 

@@ -1,9 +1,9 @@
 // Every filler's options, each filler reading its own part (fillers.h makes them).
 #pragma once
 
-#include "rangefill/repair/fairing_filler.h"
-#include "rangefill/repair/front_filler.h"
-#include "rangefill/repair/plane_filler.h"
+#include "rangefill/fillers/fairing_filler.h"
+#include "rangefill/fillers/front_filler.h"
+#include "rangefill/image/plane_filler.h"
 
 namespace rangefill {
 

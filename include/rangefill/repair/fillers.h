@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "rangefill/repair/filler.h"
+#include "rangefill/hole/filler.h"
 
 namespace rangefill {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "rangefill/repair/fill.h"
-#include "rangefill/repair/filler.h"
+#include "rangefill/hole/fill.h"
+#include "rangefill/hole/filler.h"
 
 namespace rangefill {
 

@@ -12,18 +12,22 @@
 #include "rangefill/core/mesh.h"
 #include "rangefill/core/parallel.h"
 #include "rangefill/core/topology.h"
-#include "rangefill/repair/fill.h"
-#include "rangefill/repair/filler.h"
+#include "rangefill/hole/fill.h"
+#include "rangefill/hole/filler.h"
+#include "rangefill/hole/holes.h"
+#include "rangefill/hole/zone.h"
 #include "rangefill/repair/fillers.h"
 #include "rangefill/repair/hole_report.h"
-#include "rangefill/repair/holes.h"
 #include "rangefill/repair/selection.h"
-#include "rangefill/repair/zone.h"
 
 namespace rangefill {
 
 /// How holes are chosen and filled: the fillers (each made with its own options, fillers.h), which
 /// loops, in how many passes.
+/// ReadOptions::spare_share (io/mesh_io.h) for a mesh read to be repaired: room for its fills, so
+/// that `repair(std::move(mesh))` appends them without moving the mesh's arrays.
+inline constexpr double kFillShare = 1.0 / 64;
+
 struct RepairOptions {
   FillerChain chain = make_filler_chain(kDefaultFiller, kDefaultFallbacks);  // tried in order
   ZoneOptions zone;        // each hole's zone of interest (Section V), what its fillers read

@@ -12,10 +12,10 @@
 #include <vector>
 
 #include "rangefill/core/mesh.h"
-#include "rangefill/repair/fill.h"
+#include "rangefill/hole/fill.h"
+#include "rangefill/hole/holes.h"
 #include "rangefill/repair/fill_chain.h"
 #include "rangefill/repair/fillers.h"
-#include "rangefill/repair/holes.h"
 
 namespace rangefill {
 
