@@ -10,7 +10,7 @@
 #include <opencv2/photo.hpp>
 
 #include "rangefill/eval/patches.h"
-#include "rangefill/inpaint/inpainter.h"
+#include "rangefill/inpaint/inpainters.h"
 
 namespace {
 

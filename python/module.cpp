@@ -15,7 +15,7 @@
 #include "rangefill/core/topology.h"
 #include "rangefill/depth/fill_depth.h"
 #include "rangefill/hole/holes.h"
-#include "rangefill/inpaint/inpainter.h"
+#include "rangefill/inpaint/inpainters.h"
 #include "rangefill/io/depth_io.h"
 #include "rangefill/io/mesh_io.h"
 #include "rangefill/point_cloud/point_cloud.h"
@@ -290,10 +290,10 @@ void register_errors(py::module_& module) {
 InpainterOptions with_inference(InpainterOptions options, double radius,
                                 const std::string& foe_start, double foe_tolerance,
                                 int foe_iterations) {
-  options.radius = radius;
-  options.foe_start = foe_start;
-  options.foe_tolerance = foe_tolerance;
-  options.foe_iterations = foe_iterations;
+  options.opencv.radius = radius;
+  options.foe.start = foe_start;
+  options.foe.tolerance = foe_tolerance;
+  options.foe.iterations = foe_iterations;
   return options;
 }
 
@@ -330,9 +330,9 @@ void add_depth_functions(py::module_& module) {
       py::arg("keep_border") = depth.keep_border, py::arg("reach") = depth.reach,
       py::arg("discontinuity") = depth.discontinuity, py::arg("trend") = trend_name(depth.trend),
       py::arg("trend_ring") = depth.trend_ring, py::arg("margin") = depth.margin,
-      py::arg("radius") = inpainting.radius, py::arg("foe_start") = inpainting.foe_start,
-      py::arg("foe_tolerance") = inpainting.foe_tolerance,
-      py::arg("foe_iterations") = inpainting.foe_iterations,
+      py::arg("radius") = inpainting.opencv.radius, py::arg("foe_start") = inpainting.foe.start,
+      py::arg("foe_tolerance") = inpainting.foe.tolerance,
+      py::arg("foe_iterations") = inpainting.foe.iterations,
       R"(Fills the holes of a depth map; returns (filled, stats).
 
 depth: H×W uint16 (millimetres, 0 invalid) or float32 (metres, 0 or NaN invalid), any strides.
@@ -358,18 +358,19 @@ where a pixel was filled. Raises ValueError on a bad type, shape or option.)");
          double foe_tolerance, int foe_iterations) {
         InpainterOptions options =
             with_inference({}, radius, foe_start, foe_tolerance, foe_iterations);
-        options.model = model;
-        options.mls_alpha = mls_alpha;
-        options.mls_ring = mls_ring;
+        options.foe.model = model;
+        options.mls.alpha = mls_alpha;
+        options.mls.ring = mls_ring;
         return inpaint_array(image, mask, backend, options);
       },
       py::arg("image"), py::arg("mask"), py::arg("backend"), py::kw_only(),
-      py::arg("radius") = InpainterOptions{}.radius, py::arg("model") = InpainterOptions{}.model,
-      py::arg("mls_alpha") = InpainterOptions{}.mls_alpha,
-      py::arg("mls_ring") = InpainterOptions{}.mls_ring,
-      py::arg("foe_start") = InpainterOptions{}.foe_start,
-      py::arg("foe_tolerance") = InpainterOptions{}.foe_tolerance,
-      py::arg("foe_iterations") = InpainterOptions{}.foe_iterations,
+      py::arg("radius") = InpainterOptions{}.opencv.radius,
+      py::arg("model") = InpainterOptions{}.foe.model,
+      py::arg("mls_alpha") = InpainterOptions{}.mls.alpha,
+      py::arg("mls_ring") = InpainterOptions{}.mls.ring,
+      py::arg("foe_start") = InpainterOptions{}.foe.start,
+      py::arg("foe_tolerance") = InpainterOptions{}.foe.tolerance,
+      py::arg("foe_iterations") = InpainterOptions{}.foe.iterations,
       R"(Restores the masked pixels of an image with one back-end, like cv2.inpaint.
 
 image: H×W float32, any strides; every pixel outside the mask is data. mask: H×W bool or uint8,
@@ -474,8 +475,8 @@ OSError.)");
         fillers.plane.inpainter = inpainter;
         fillers.plane.trend = trend_from_name(trend);
         fillers.plane.image.beta = beta;
-        fillers.plane.inpainting.radius = radius;
-        fillers.plane.inpainting.mls_alpha = alpha;
+        fillers.plane.inpainting.opencv.radius = radius;
+        fillers.plane.inpainting.mls.alpha = alpha;
         make_inpainter(inpainter, fillers.plane.inpainting);  // an unknown name fails first
         RepairOptions options;
         options.chain = make_filler_chain(filler, fallback, fillers);
@@ -499,8 +500,8 @@ OSError.)");
       py::arg("max_hole_area") = repair.max_hole_area, py::arg("passes") = repair.passes,
       py::arg("threads") = repair.threads, py::arg("beta") = fillers.plane.image.beta,
       py::arg("gamma") = repair.zone.gamma_degrees, py::arg("rings") = repair.zone.rings,
-      py::arg("radius") = fillers.plane.inpainting.radius,
-      py::arg("alpha") = fillers.plane.inpainting.mls_alpha, py::arg("mesher") = "greedy",
+      py::arg("radius") = fillers.plane.inpainting.opencv.radius,
+      py::arg("alpha") = fillers.plane.inpainting.mls.alpha, py::arg("mesher") = "greedy",
       R"(Fills the holes of a mesh; returns (repaired, report).
 
 The options and their defaults are `rangefill repair`'s (docs/repair.md): filler and fallback

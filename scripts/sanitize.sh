@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # Builds the test suite and the rangefill binary with AddressSanitizer and UndefinedBehaviorSanitizer
 # (RANGEFILL_SANITIZE) into build-sanitize/, without the benchmarks, and runs the tests there.
-# clang++-14 (installed for the fuzz stage): with both sanitizers it compiles our code about twice
-# as fast as g++ 12 does (tools/rangefill/depth.cpp: 30 s against 66 s), and its runtime is the
-# reference one. -O1: the usual level for sanitizers; no -g (the reports name functions).
+# clang++-14 (installed for the fuzz stage): with both sanitizers it compiles our code faster than
+# g++ 12 does, and its runtime is the reference one. -O1: the usual level for sanitizers; no -g
+# (the reports name functions).
 # Two tests are left to scripts/test.sh: evaluation-scale runs on ../shared whose code is covered
 # here by smaller tests, and which take minutes under the sanitizers (RANGEFILL_SANITIZE_ALL=1 runs
-# them as well): FillDepth.BeatsCvInpaintOnSensorFrames (every back-end on four VGA sensor frames,
-# 310 s) and Benchmark.PunchedSharedMeshesAreRepaired (60 holes in the shared meshes, 170 s).
+# them as well): FillDepth.BeatsCvInpaintOnSensorFrames (every back-end on four VGA sensor frames)
+# and Benchmark.PunchedSharedMeshesAreRepaired (60 holes in the shared meshes).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="$root/build-sanitize"

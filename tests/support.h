@@ -23,12 +23,12 @@ std::optional<std::filesystem::path> shared_data_dir();
 std::filesystem::path temporary_directory(const std::string& stem);
 
 /// The float nearest to each coordinate, back in double. Out of line on purpose: GCC 12 at -O2/-O3
-/// was seen to vectorise `v.cast<float>().cast<double>()` into a no-op for some components.
+/// may vectorise `v.cast<float>().cast<double>()` into a no-op for some components.
 Vec3 round_to_float(const Vec3& v);
 
 /// Repair options whose chain is the Pérez pipeline's: planes first, then the advancing front, the
-/// parts of a complex hole and the loop's patches (the default chain before the faired patch led
-/// it). Tests of the image path and of the back-ends use it.
+/// parts of a complex hole and the loop's patches. Tests of the image path and of the back-ends
+/// use it.
 RepairOptions paper_chain(const PlaneFillerOptions& plane = {});
 
 /// The image pipeline's options with back-end `inpainter` and `trend`, the rest defaults.

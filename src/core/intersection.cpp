@@ -398,8 +398,8 @@ bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>
 }
 
 // The pairs of faces whose boxes meet come from CGAL's box intersection (a sweep over sorted
-// boxes), each pair once: a query per face read its grid cells and their faces again and again
-// (a million faces: 8 s against 4). The boxes are floats rounded outwards: half the memory, and
+// boxes), each pair once: a query per face would read its grid cells and their faces again and
+// again. The boxes are floats rounded outwards: half the memory, and
 // a pair they add is refused by the exact test.
 int count_self_intersections(const Mesh& mesh, const std::vector<int>& faces) {
   using FaceBox =

@@ -13,6 +13,7 @@
 #include "depth/fill_along_lines.h"
 #include "rangefill/core/errors.h"
 #include "rangefill/core/parallel.h"
+#include "rangefill/inpaint/inpainters.h"
 #include "rangefill/inpaint/pixel_labels.h"
 
 namespace rangefill {
@@ -430,9 +431,9 @@ std::vector<std::string> depth_filler_names() {
 
 InpainterOptions depth_inpainting_defaults() {
   InpainterOptions options;
-  options.foe_start = "telea";
-  options.foe_tolerance = 3e-3;
-  options.foe_iterations = 10;
+  options.foe.start = "telea";
+  options.foe.tolerance = 3e-3;
+  options.foe.iterations = 10;
   return options;
 }
 

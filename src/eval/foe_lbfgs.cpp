@@ -64,7 +64,7 @@ extern "C" __attribute__((visibility("default"))) void rangefill_foe_lbfgs(
   solver.function_tolerance = 1e-9;
   solver.parameter_tolerance = 1e-12;
   // The MAP moves between basins as θ changes, so the objective has small jumps; a line search
-  // that has not found a step in 10 tries will not (Ceres' 20 tries, 5 restarts took 10 minutes).
+  // that has not found a step in 10 tries will not, and more tries and restarts only take time.
   solver.max_num_line_search_step_size_iterations = 10;
   solver.max_num_line_search_direction_restarts = 2;
   if (options.max_seconds > 0) solver.max_solver_time_in_seconds = options.max_seconds;

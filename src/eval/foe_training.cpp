@@ -63,7 +63,7 @@ double shifted_dot(const cv::Mat& a, const cv::Mat& b, const cv::Rect& valid, cv
 
 // The MAP estimate the objective scores: iterations until ∇_u E vanishes, as the implicit gradient
 // assumes (foe_map ends with Newton steps, which get there); a tolerance on E would stop them
-// where E no longer changes but ∇_u E is still 1e-5.
+// where E no longer changes but ∇_u E has not vanished yet.
 constexpr FoeMapOptions kTrainingMap{200, 0, 1e-11, FoeMapMethod::newton};
 
 // The loss of one sample and, when `gradient` is given, its derivatives with respect to the taps
@@ -161,9 +161,9 @@ FoeObjective::FoeObjective(std::vector<HoleSample> samples, int size, int count,
   const double spread = std::sqrt(sum / std::max(1.0, pixels));
   coefficient_scale_ = spread > 0 ? 1.0 / spread : 1.0;
   if (start_) {
-    // Started from a model, θ's unit is its RMS filter coefficient instead: Roth & Black's are ~30
-    // of the unit above, and L-BFGS's first step, the gradient itself, was then too short to be
-    // told from the small jumps of the MAP between basins.
+    // Started from a model, θ's unit is its RMS filter coefficient instead: Roth & Black's are
+    // far larger than the unit above, which would make L-BFGS's first step, the gradient itself,
+    // too short to be told from the small jumps of the MAP between basins.
     coefficient_scale_ = 1;
     const std::vector<double> theta = parameters_of(*start_);
     const int coefficients = count_ * static_cast<int>(basis_.size());

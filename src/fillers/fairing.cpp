@@ -36,10 +36,9 @@ namespace pmp = CGAL::Polygon_mesh_processing;
 // Laplace-Beltrami operator of CGAL's cotangent weights (K) and Voronoi areas (M). Its rows
 // scaled by M, the system is (K M^-1)^k K on the inner vertices: symmetric, so an LDL^T
 // factorisation solves it, faster and in less memory than the LU factorisation of L^(k+1) in
-// CGAL's fair() (a 1 M-face repair: peak 112 -> 95 MB). The solutions agree to 1e-10 of the
-// patch's size (mesh kit, seeds 1-3). The system is a product of sparse matrices; CGAL expands
-// each row over the paths of its (k+1)-ring, some 300 weight look-ups and triplets per row at
-// C2, a tenth of the mesh kit's time. Returns whether the system solved.
+// CGAL's fair(); the two solve the same system, so their solutions agree up to rounding. The
+// system is a product of sparse matrices; CGAL expands each row over the paths of its
+// (k+1)-ring, many weight look-ups and triplets per row at C2. Returns whether the system solved.
 bool fair_inner_vertices(SurfaceMesh& surface, const std::vector<VertexIndex>& inner,
                          int continuity) {
   if (inner.empty()) return true;

@@ -6,6 +6,7 @@
 #include "rangefill/core/errors.h"
 #include "rangefill/image/complex_hole.h"
 #include "rangefill/image/stitch.h"
+#include "rangefill/inpaint/inpainters.h"
 
 namespace rangefill {
 

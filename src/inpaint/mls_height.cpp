@@ -227,8 +227,8 @@ std::vector<Hole> find_holes(const cv::Mat& depth, const cv::Mat& mask, double r
 
 }  // namespace
 
-MlsHeightInpainter::MlsHeightInpainter(const InpainterOptions& options)
-    : alpha_(options.mls_alpha), ring_(options.mls_ring) {
+MlsHeightInpainter::MlsHeightInpainter(const MlsHeightOptions& options)
+    : alpha_(options.alpha), ring_(options.ring) {
   if (!(std::isfinite(alpha_) && alpha_ >= 0)) {
     throw InvalidInput("mls: alpha must be finite and non-negative");
   }

@@ -1,8 +1,8 @@
 // Internal: PNG, TIFF and EXR images in memory, through libpng, libtiff and OpenEXR (the last two
 // in a module loaded when first needed, io/tiff_exr.h). Not installed.
 //
-// OpenCV's imgcodecs would do the same, but it loads some 140 shared libraries (GDAL, Poppler,
-// HEIF, ...) when a program starts, 70 ms of every run of the rangefill program.
+// OpenCV's imgcodecs would do the same, but it loads many shared libraries (GDAL, Poppler, HEIF,
+// ...) when a program starts, a cost every run of the rangefill program would pay.
 #pragma once
 
 #include <string>

@@ -59,8 +59,8 @@ std::string read_file(const fs::path& path) {
   if (!file) throw IoError(path.string() + ": cannot open: " + std::strerror(errno));
   std::error_code error;
   if (fs::is_directory(path, error)) throw IoError(path.string() + ": is a directory");
-  // One read of the whole file (a character iterator took 0.15 s for 20 MB); a file that grows
-  // meanwhile is read to its end.
+  // One read of the whole file (a character iterator is slow); a file that grows meanwhile is
+  // read to its end.
   file.seekg(0, std::ios::end);
   const std::streamoff size = file.tellg();
   file.seekg(0, std::ios::beg);
@@ -75,11 +75,11 @@ std::string read_file(const fs::path& path) {
 namespace {
 
 // The bytes of a regular file, read into pages of their own (an anonymous mapping) that go back
-// to the system once parsed: read into the heap, a large file left a hole as large as itself
-// that the arrays made later did not fit in, and the process's resident size kept it (a 1 M-face
-// repair: 90 MB, 64 MB of it in use). Other files (pipes, a file that grows meanwhile) as
-// read_file reads them, and opened there only: a pipe opened twice lost what its writer had
-// written and closed in between, and waited for a writer that never came.
+// to the system once parsed: read into the heap, a large file would leave a hole as large as
+// itself that the arrays made later do not fit in, and the process's resident size would keep
+// it. Other files (pipes, a file that grows meanwhile) as read_file reads them, and opened there
+// only: a pipe opened twice loses what its writer wrote and closed in between, and waits for a
+// writer that never comes.
 class FileBytes {
  public:
   explicit FileBytes(const fs::path& path) {

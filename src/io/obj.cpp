@@ -1,7 +1,7 @@
 // Wavefront OBJ, read in one pass: vertices (with "v x y z r g b" colours), normals and faces;
 // groups and objects are read past, materials, texture coordinates, lines and points dropped.
 //
-// tinyobjloader (Debian's 2.0.0rc10) was evaluated and rejected: it does not round numbers
+// Our own parser rather than tinyobjloader (Debian's 2.0.0rc10), which does not round numbers
 // correctly (0.7 reads as 0.70000000000000007, 1.7976931348623157e308 as inf), reads missing or
 // malformed ones ("nan", "1,5", the z of "v 1 2") as 0 without a word, reads face indices with
 // atoi (4294967297 wraps to 1) and counts a face's corners in one byte (a 256-gon has 0).

@@ -1,6 +1,6 @@
 // Internal: TIFF and EXR images in memory, through libtiff and OpenEXR, in a module of their own,
 // librangefill_tiff_exr.so, installed beside librangefill.so, which io/image_codecs.cpp loads
-// (dlopen) when it first meets either format: their libraries (a dozen, with libtiff's codecs)
+// (dlopen) when it first meets either format: their libraries (libtiff's codecs among them)
 // load only then. Not installed.
 #pragma once
 

@@ -1,5 +1,5 @@
 // Internal: the point-cloud meshing's PCL stages, normal estimation (pcl_features) and the greedy
-// projection (pcl_surface, which loads VTK: some 50 shared libraries and 20 ms at every start of a
+// projection (pcl_surface, which loads VTK and its many shared libraries at every start of a
 // program linked to it). They live in a module of their own, librangefill_greedy.so, installed
 // beside librangefill.so, which repair/point_cloud.cpp loads (dlopen) when it first meshes a
 // cloud. Not installed.

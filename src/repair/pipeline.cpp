@@ -358,7 +358,7 @@ struct PassFills {
 
 // Steps 1 and 2 of a pass: the mesh's loops, those chosen and their fills. The surface's topology
 // and intersection index are freed on return, before merging the fills grows the mesh's arrays
-// (the mesh, its topology and its grown arrays at once were a large repair's peak of memory).
+// (the mesh, its topology and its grown arrays at once would be a large repair's peak of memory).
 // The first pass also takes d_m, the restoration matrix's first row, the defects and the
 // unfillable vertices.
 PassFills fill_loops(const Mesh& mesh, int pass, const RepairOptions& options, double& mean_edge,

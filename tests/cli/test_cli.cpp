@@ -402,10 +402,10 @@ TEST(Cli, DepthSaysWhatIsLeftAndWritesTheFilledMask) {
   fs::remove_all(dir);
 }
 
-// A PNG whose header declares 30000×30000 16-bit pixels over 2×2 pixels of data. Before the PNG
-// check, OpenCV reserved the declared 1.8 GB before finding the data missing, and libpng printed
-// its own line to stderr; now it is refused with exit 3 and one line naming it, also with the
-// address space capped at 2 GB.
+// A PNG whose header declares 30000×30000 16-bit pixels over 2×2 pixels of data (OpenCV alone
+// would reserve the declared 1.8 GB before finding the data missing, and libpng print its own
+// line to stderr): it is refused with exit 3 and one line naming it, also with the address space
+// capped at 2 GB.
 TEST(Cli, DepthImageDeclaringHugeDimensionsIsRefused) {
   const fs::path dir = testing::temporary_directory("cli-depth-huge");
   std::vector<uchar> png;

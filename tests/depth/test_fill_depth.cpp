@@ -265,7 +265,7 @@ TEST(FillDepth, BorderHolesAreExtrapolatedWithTheOcclusionRule) {
   cv::Mat error;
   cv::absdiff(filled, truth, error);
   double worst = 0;
-  // The border is a free edge: the slope of the floor flattens there (35 mm at the top row); the
+  // The border is a free edge: the slope of the floor flattens there, which the bound allows; the
   // box is 2 m nearer.
   cv::minMaxLoc(error(cv::Rect(180, 0, 20, 300)), nullptr, &worst);
   EXPECT_LT(worst, 50) << "the shadow took the box's depth";

@@ -1,5 +1,5 @@
 // The punched-hole benchmark on the shared closed meshes, as `rangefill bench` runs it (seed 1,
-// 5 holes each, the default options): a regression guard for what the closing notes report.
+// 5 holes each, the default options): a regression guard.
 #include <gtest/gtest.h>
 
 #include "rangefill/eval/evaluation.h"
@@ -38,7 +38,7 @@ TEST(Benchmark, PunchedSharedMeshesAreRepaired) {
   }
   std::printf("%d of %d punched holes closed\n", closed, holes);
   EXPECT_EQ(holes, 60);
-  // Measured: 59; 57 before Liepa's triangulation became the last resort. cow 2 stays open: cow.ply
+  // All but one close. cow 2 stays open: cow.ply
   // intersects itself there (two of the hole's boundary edges pass through faces of the other
   // sheet), so every fill on those edges meets the surface and is refused.
   EXPECT_GE(closed, 59);

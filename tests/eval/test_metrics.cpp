@@ -137,8 +137,8 @@ TEST(ScoreRepair, RepairedSphereHolesAreCloseToTheTruth) {
   for (const HoleScore& score : scores) {
     SCOPED_TRACE("hole " + std::to_string(score.hole) + " (" + score.method + ")");
     EXPECT_TRUE(score.filled) << score.failure;
-    EXPECT_LT(score.distance.hausdorff, mean_edge);   // 0.03 d_m measured
-    EXPECT_LT(score.distance.mean, 0.1 * mean_edge);  // 0.008 d_m measured
+    EXPECT_LT(score.distance.hausdorff, mean_edge);
+    EXPECT_LT(score.distance.mean, 0.1 * mean_edge);
     EXPECT_GT(score.distance.hausdorff, 0);
     EXPECT_GT(score.new_faces, 0);
     EXPECT_GT(score.edge_ratio, 0.5);

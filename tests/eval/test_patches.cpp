@@ -1,4 +1,5 @@
 #include "rangefill/eval/patches.h"
+#include "rangefill/inpaint/inpainters.h"
 
 #include <cmath>
 

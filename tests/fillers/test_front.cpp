@@ -68,8 +68,8 @@ void expect_one_hole_closed_by(const Mesh& cut, const RepairResult& result,
 }
 
 // A cap of 40° cut from a sphere, filled by the front from the start: the result is a closed
-// manifold, every new vertex lies within 0.05 d_m of the sphere (0.007 d_m measured: the MLS
-// surface of the zone follows the sphere), and no new face intersects anything.
+// manifold, every new vertex lies within 0.05 d_m of the sphere (the MLS surface of the zone
+// follows the sphere), and no new face intersects anything.
 TEST(FrontFiller, ClosesASphereCapOnTheSphere) {
   const Mesh sphere = testing::make_sphere(24);
   const Mesh cut = testing::remove_faces(
@@ -125,7 +125,7 @@ Mesh capped_tube(double r, double length, int around, int along) {
 // radius 0.2) leaves one loop that no plane sees from the front with a simple boundary (a complex
 // hole: the planes alone fill it only in parts, Section VI-C). With the default fallbacks it is
 // closed by the front, not on a plane, into a closed manifold without self-intersections whose new
-// vertices lie on the tube (0.07 d_m measured; the tube's facets themselves sag 0.03 d_m from the
+// vertices lie within 0.25 d_m of the tube (the tube's facets themselves sag 0.03 d_m from the
 // cylinder).
 TEST(FrontFiller, ClosesAHoleWrappedRoundATube) {
   const Mesh tube = capped_tube(0.2, 2, 24, 40);

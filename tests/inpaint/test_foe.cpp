@@ -11,7 +11,7 @@
 
 #include "rangefill/core/errors.h"
 #include "rangefill/inpaint/foe_energy.h"
-#include "rangefill/inpaint/inpainter.h"
+#include "rangefill/inpaint/inpainters.h"
 
 namespace rangefill {
 namespace {
@@ -32,14 +32,14 @@ TEST(FoeInpainter, RefinesAnotherBackendsFill) {
   cv::Mat telea, unrefined, refined;
   make_inpainter("telea")->inpaint(image, mask, telea);
   InpainterOptions options;
-  options.foe_start = "telea";
-  options.foe_iterations = 0;
+  options.foe.start = "telea";
+  options.foe.iterations = 0;
   make_inpainter("foe", options)->inpaint(image, mask, unrefined);
   EXPECT_EQ(cv::norm(unrefined, telea, cv::NORM_INF), 0);
-  options.foe_iterations = 10;
+  options.foe.iterations = 10;
   make_inpainter("foe", options)->inpaint(image, mask, refined);
   EXPECT_EQ(cv::norm(refined, image, cv::NORM_INF, ~mask), 0);
-  const FoeModel model = load_foe_model(options.model);
+  const FoeModel model = load_foe_model(options.foe.model);
   const auto energy = [&](const cv::Mat& x) {
     cv::Mat x64;
     x.convertTo(x64, CV_64F);
@@ -47,11 +47,11 @@ TEST(FoeInpainter, RefinesAnotherBackendsFill) {
   };
   EXPECT_LT(energy(refined), energy(telea));
   for (const auto& spoil : std::vector<std::function<void(InpainterOptions&)>>{
-           [](InpainterOptions& o) { o.foe_start = "foe"; },
-           [](InpainterOptions& o) { o.foe_start = "foe:roth-black"; },
-           [](InpainterOptions& o) { o.foe_start = "nothing"; },
-           [](InpainterOptions& o) { o.foe_tolerance = -1; },
-           [](InpainterOptions& o) { o.foe_iterations = -1; }}) {
+           [](InpainterOptions& o) { o.foe.start = "foe"; },
+           [](InpainterOptions& o) { o.foe.start = "foe:roth-black"; },
+           [](InpainterOptions& o) { o.foe.start = "nothing"; },
+           [](InpainterOptions& o) { o.foe.tolerance = -1; },
+           [](InpainterOptions& o) { o.foe.iterations = -1; }}) {
     InpainterOptions bad;
     spoil(bad);
     EXPECT_THROW(make_inpainter("foe", bad), InvalidInput);
@@ -88,7 +88,7 @@ double disk_restoration_error(const Inpainter& inpainter, double (*surface)(int 
 
 // MAP inference with every shipped model restores a plane closely (its slope is 0.005 per pixel)
 // and a paraboloid better than a harmonic fill does (0.05 at the hole's centre: the paraboloid's
-// rise from there to the rim; measured: depth 0.019, roth-black 0.026).
+// rise from there to the rim).
 TEST(FoeInpainter, RestoresAPlaneAndAQuadric) {
   const auto plane = [](int r, int c) { return 0.004 * c - 0.003 * r + 0.5; };
   const auto paraboloid = [](int r, int c) {

@@ -12,7 +12,7 @@
 #include "foe_samples.h"
 #include "rangefill/core/errors.h"
 #include "rangefill/inpaint/foe_energy.h"
-#include "rangefill/inpaint/inpainter.h"
+#include "rangefill/inpaint/inpainters.h"
 
 namespace rangefill {
 namespace {

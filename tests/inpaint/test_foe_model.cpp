@@ -11,7 +11,7 @@
 
 #include "foe_samples.h"
 #include "rangefill/core/errors.h"
-#include "rangefill/inpaint/inpainter.h"
+#include "rangefill/inpaint/inpainters.h"
 
 namespace rangefill {
 namespace {
@@ -51,7 +51,7 @@ TEST(FoeModel, DepthModelShipsWithItsTrainingCommand) {
   EXPECT_EQ(model.size, 5);
   EXPECT_EQ(model.count(), 24);
   EXPECT_NE(model.training.find("rangefill train-foe"), std::string::npos);
-  EXPECT_EQ(load_foe_model(InpainterOptions{}.model).name, "depth");  // the default
+  EXPECT_EQ(load_foe_model(InpainterOptions{}.foe.model).name, "depth");  // the default
 }
 
 }  // namespace

@@ -2,7 +2,7 @@
 // checks, known pixels kept bit for bit, and regression tests for the two OpenCV 4.6 bugs the
 // wrapper works around (each test also shows the raw cv::inpaint bug, so that it fails when the
 // workaround goes or when OpenCV fixes the bug and the workaround can go).
-#include "rangefill/inpaint/inpainter.h"
+#include "rangefill/inpaint/inpainters.h"
 
 #include <algorithm>
 #include <cmath>
@@ -168,7 +168,7 @@ TEST(OpenCvWorkarounds, MaskOnTheTopLeftBorderIsRestored_opencv25389) {
   EXPECT_LE(max_error_in(raw, 60000, fine_mask), 2);
 
   // Whether the padding is still needed, said, not asserted: raw Navier–Stokes on the float image
-  // reads the masked zeros (0.055 measured), raw Telea on CV_16U gives 55603 for 60000.
+  // reads the masked zeros, and raw Telea on CV_16U falls far short of 60000.
   cv::inpaint(depth, mask, raw, 5, cv::INPAINT_NS);
   const bool ns_bug = max_error_in(raw, 0.25, mask) > 0.1;
   cv::inpaint(corner_image(CV_16U, 60000, top_left, mask), mask, raw, 5, cv::INPAINT_TELEA);
@@ -180,9 +180,8 @@ TEST(OpenCvWorkarounds, MaskOnTheTopLeftBorderIsRestored_opencv25389) {
 
 // A linear ramp (0.02 per column, −0.01 per row) with a disk of radius 7 masked. Telea and
 // Navier–Stokes are weighted means of the rim at heart, so they do not reproduce a gradient
-// exactly: measured worst errors are 0.081 (telea) and 0.087 (ns) at radius 5, about a quarter of
-// the 0.31 the ramp changes across the disk (this is why repair() removes a trend first), mean
-// errors 0.033 and 0.036. The tolerances, 0.12 and 0.06, are about 1.5 times those: they fail on
+// exactly (the ramp changes by 0.31 across the disk; this is why repair() removes a trend first).
+// The tolerances on the worst and the mean error, 0.12 and 0.06, leave room for that and fail on
 // a bias such as #25404's (about 2), a lost scale or a fill that ignores one side of the rim; and
 // the fill must stay within the rim's range (a weighted mean cannot leave it).
 TEST(Inpaint, LinearRampIsReproducedApproximately) {

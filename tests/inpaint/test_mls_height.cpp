@@ -46,8 +46,8 @@ double max_error(const cv::Mat& out, const cv::Mat& expected, const cv::Mat& mas
 
 // max_error of the fill at α of `depth`'s masked pixels.
 double max_error_at(double alpha, const cv::Mat& depth, const cv::Mat& mask) {
-  InpainterOptions options;
-  options.mls_alpha = alpha;
+  MlsHeightOptions options;
+  options.alpha = alpha;
   cv::Mat out;
   MlsHeightInpainter(options).inpaint(depth, mask, out);
   return max_error(out, depth, mask);
@@ -82,9 +82,9 @@ TEST(MlsHeight, EveryPixelSolvesEquation7) {
   random.fill(depth, cv::RNG::UNIFORM, 0.0, 1.0);
   cv::Mat mask = cv::Mat::zeros(depth.size(), CV_8U);
   draw_ellipse(mask, {15, 13}, 7, 5, 30);
-  InpainterOptions options;
-  options.mls_alpha = 0.05;
-  options.mls_ring = 3;
+  MlsHeightOptions options;
+  options.alpha = 0.05;
+  options.ring = 3;
   cv::Mat out;
   MlsHeightInpainter(options).inpaint(depth, mask, out);
 
@@ -131,8 +131,8 @@ TEST(MlsHeight, ReproducesQuadratics) {
 TEST(MlsHeight, LargeHolesWithSteepWeightsDoNotUnderflow) {
   cv::Mat mask = cv::Mat::zeros(60, 60, CV_8U);
   draw_ellipse(mask, {30, 30}, 20, 20);
-  InpainterOptions options;
-  options.mls_alpha = 4;  // exp(−4·20²) = 0 in double
+  MlsHeightOptions options;
+  options.alpha = 4;  // exp(−4·20²) = 0 in double
   const cv::Mat constant(mask.size(), CV_32F, cv::Scalar(0.37));
   cv::Mat out;
   MlsHeightInpainter(options).inpaint(constant, mask, out);
@@ -155,7 +155,7 @@ TEST(MlsHeight, IllConditionedFitsFallBackToAPlane) {
   mask.col(0).setTo(0);
   mask.col(19).setTo(0);
   cv::Mat out;
-  MlsHeightInpainter(InpainterOptions{}).inpaint(depth, mask, out);
+  MlsHeightInpainter().inpaint(depth, mask, out);
   EXPECT_LT(max_error(out, depth, mask), 1e-5);
 }
 
@@ -173,13 +173,13 @@ TEST(MlsHeight, EachHoleUsesItsOwnRing) {
 }
 
 TEST(MlsHeight, RefusesBadOptions) {
-  InpainterOptions options;
-  options.mls_alpha = -0.1;
+  MlsHeightOptions options;
+  options.alpha = -0.1;
   EXPECT_THROW(MlsHeightInpainter{options}, InvalidInput);
-  options.mls_alpha = std::nan("");
+  options.alpha = std::nan("");
   EXPECT_THROW(MlsHeightInpainter{options}, InvalidInput);
   options = {};
-  options.mls_ring = 0.5;
+  options.ring = 0.5;
   EXPECT_THROW(MlsHeightInpainter{options}, InvalidInput);
 }
 

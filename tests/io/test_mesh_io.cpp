@@ -122,7 +122,7 @@ double signed_area_z(const Mesh& mesh, int face) {
 // A file of megabytes goes out in pieces as it is made: in every format and encoding it holds the
 // bytes serialize_mesh gives; read back through its own pages, it is the mesh again.
 TEST(MeshIo, LargeFilesAreWrittenInPiecesWithTheSameBytes) {
-  const Mesh mesh = testing::make_grid(300);  // 180 000 faces: 2 to 14 MB a file
+  const Mesh mesh = testing::make_grid(300);  // 180 000 faces: megabytes a file
   WriteOptions ascii;
   ascii.encoding = Encoding::ascii;
   const fs::path dir = testing::temporary_directory("io-large");
@@ -614,7 +614,7 @@ TEST(StlIo, AsciiFileWithoutEndsolidIsReadWithAWarning) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The fuzzers' seed corpus (tests/fuzz/corpus/<format>/, with the inputs that once were findings):
+// The fuzzers' seed corpus (tests/fuzz/corpus/<format>/, with their findings):
 // every file fails with one line naming it, or reads, and then writes and reads back with the
 // same counts (as the fuzzers demand). Under RANGEFILL_SANITIZE this replays them with the
 // sanitizers.

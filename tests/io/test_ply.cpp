@@ -207,8 +207,8 @@ TEST(PlyIo, MalformedFilesGiveOneLineErrors) {
   }
 }
 
-// Found by fuzzing (tests/fuzz): an ASCII value outside its declared integer type was cast
-// unchecked (undefined behaviour) and written back wrapped; a provenance value must be a hole id.
+// An ASCII value outside its declared integer type is refused, not cast unchecked (undefined
+// behaviour) and written back wrapped; a provenance value must be a hole id.
 TEST(PlyIo, AsciiIntegersMustFitTheirDeclaredType) {
   const std::string header =
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
@@ -231,8 +231,9 @@ TEST(PlyIo, AsciiIntegersMustFitTheirDeclaredType) {
             std::string::npos);
 }
 
-// Found by fuzzing: positions were written back in the type of x alone, so a double y or z read
-// with a float x came back rounded (or infinite); a property declared twice lost the first.
+// Positions are written back in a type that holds all three coordinates, not in that of x alone:
+// a double y or z read with a float x comes back unrounded (and finite); a property declared
+// twice does not lose the first.
 TEST(PlyIo, MixedTypesAndIncompleteTriplesLoseNothing) {
   const std::string text =
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty double y\n"

@@ -14,6 +14,7 @@
 #include "rangefill/eval/evaluation.h"
 #include "rangefill/eval/metrics.h"
 #include "rangefill/eval/punch.h"
+#include "rangefill/inpaint/inpainters.h"
 #include "rangefill/io/depth_io.h"
 
 namespace rangefill::cli {
@@ -506,7 +507,7 @@ json bench_configuration(const BenchCommand& command, const std::vector<std::str
           {"spread", command.punch.spread},
           {"inpainters", command.inpainters},
           {"baselines", command.baselines},
-          {"alpha", command.inpainting.mls_alpha},
+          {"alpha", command.inpainting.mls.alpha},
           {"trends", command.trends},
           {"filler", command.filler},
           {"fallback", command.fallback},
@@ -783,7 +784,7 @@ void add_bench_command(CLI::App& app, Runner& runner) {
                   "Comma-separated back-ends (default: all, unless --baselines is given)");
   sub->add_option("--baselines", command->baselines,
                   "Comma-separated baselines: cgal-fair, cgal-triangulate (CGAL's Liepa)");
-  sub->add_option("--alpha", command->inpainting.mls_alpha,
+  sub->add_option("--alpha", command->inpainting.mls.alpha,
                   "mls: alpha of the weights exp(-alpha d^2)/d^2 (eq. 6), d in pixels")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 100.0));

@@ -16,7 +16,7 @@
 
 #include "rangefill/core/errors.h"
 #include "rangefill/inpaint/foe_model.h"
-#include "rangefill/inpaint/inpainter.h"
+#include "rangefill/inpaint/inpainters.h"
 
 namespace rangefill::cli {
 
@@ -188,16 +188,16 @@ std::string inpainter_help() {
 void add_foe_inference_options(CLI::App* sub, InpainterOptions& options) {
   std::vector<std::string> starts = inpainter_names();
   starts.erase(std::find(starts.begin(), starts.end(), "foe"));
-  sub->add_option("--foe-start", options.foe_start,
+  sub->add_option("--foe-start", options.foe.start,
                   "foe: what inference starts from: harmonic (its own Laplace fill) or another "
                   "back-end's fill (E is not convex: the minimum found is the one near the start)")
       ->capture_default_str()
       ->check(CLI::IsMember(starts));
-  sub->add_option("--foe-tolerance", options.foe_tolerance,
+  sub->add_option("--foe-tolerance", options.foe.tolerance,
                   "foe: stop when a step lowers the energy by less than this share of it")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  sub->add_option("--foe-iterations", options.foe_iterations, "foe: or after this many steps")
+  sub->add_option("--foe-iterations", options.foe.iterations, "foe: or after this many steps")
       ->capture_default_str()
       ->check(CLI::Range(0, 100000));
 }

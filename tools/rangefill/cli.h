@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "rangefill/eval/patches.h"
+#include "rangefill/inpaint/inpainters.h"
 #include "rangefill/io/mesh_io.h"
 #include "rangefill/repair/filler_options.h"
 #include "rangefill/repair/pipeline.h"
@@ -94,7 +95,7 @@ FillerChain chain_from_arguments(const std::string& filler, const std::string& f
 FillerChain candidates_from_arguments(const CLI::App& command, const std::string& select,
                                       const FillerOptions& fillers);
 
-/// SIGINT, SIGTERM and SIGHUP no longer kill the process where it stands: a thread of their own
+/// SIGINT, SIGTERM and SIGHUP do not kill the process where it stands: a thread of their own
 /// takes them and exits with 128 + the signal's number, but never while an OutputGuard is held, so
 /// that every output is complete or absent and no temporary file is left behind. Call first in
 /// main, before any other thread exists (threads inherit the blocked signals).

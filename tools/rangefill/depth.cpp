@@ -9,6 +9,7 @@
 #include "rangefill/core/errors.h"
 #include "rangefill/core/parallel.h"
 #include "rangefill/depth/fill_depth.h"
+#include "rangefill/inpaint/inpainters.h"
 #include "rangefill/io/depth_io.h"
 #include "rangefill/reports/reports.h"
 
@@ -296,7 +297,7 @@ void add_depth_command(CLI::App& app, Runner& runner) {
                   "Surface fitted around each hole and removed before the back-end")
       ->capture_default_str()
       ->check(CLI::IsMember({"none", "plane", "quadric"}));
-  sub->add_option("--radius", options.inpainting.radius,
+  sub->add_option("--radius", options.inpainting.opencv.radius,
                   "Neighbourhood radius in pixels (telea, ns)")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 100.0));

@@ -264,7 +264,7 @@ int run_depth_bench(const DepthBenchCommand& command) {
           } else {
             const CvInpaint& baseline = kCvInpaints[m - backends.size()];
             cv::inpaint(input, baseline.mask_all_invalid ? all_invalid : punched, output,
-                        command.fill.inpainting.radius, baseline.flags);
+                        command.fill.inpainting.opencv.radius, baseline.flags);
           }
         });
         const FrameErrors errors = errors_over(output, frame.truth, punched);

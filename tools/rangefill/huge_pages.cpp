@@ -1,13 +1,13 @@
 // The command's memory, on transparent huge pages where it pays (MADV_HUGEPAGE; the kernel's
-// default policy, "madvise", uses them only where asked): page faults were a quarter to a half of
-// a large repair or of a depth frame's fill in a fresh process.
+// default policy, "madvise", uses them only where asked): page faults weigh on a large repair and
+// on a depth frame's fill in a fresh process.
 // - At start-up: freed blocks stay with the process (a command allocates and frees images and
 //   meshes of the same sizes again and again; glibc would map each block of 128 KB or more on its
 //   own, return it when freed and fault its pages in anew), and the heap's first 200 MB,
 //   shared by every thread, are advised.
 // - operator new advises the whole huge pages of a block of 4 MB or more, wherever it lies (a
-//   mesh of millions of faces fills arrays of tens of megabytes once each: 10 M faces, 23 s
-//   against 15 s). Freeing stays glibc's operator delete (free).
+//   mesh of millions of faces fills arrays of tens of megabytes once each). Freeing stays glibc's
+//   operator delete (free).
 // Not in the sanitizer build, whose allocator is its own.
 #include <malloc.h>
 #include <sys/mman.h>
@@ -32,8 +32,7 @@ void advise_huge_pages(void* block, std::size_t size) {
 
 // The heap's first kHeapReserve bytes, taken from the system at start-up (virtual memory only),
 // shared by every thread: the images and arrays of a command fault in 2 MB at a time rather than
-// 4 KB (a VGA depth frame: some 1700 faults fewer, its fast fill 28 → 11 ms; a 1 M-face repair:
-// 18 500 faults → 2 200, 1.3 → 1.0 s).
+// 4 KB.
 constexpr std::size_t kHeapReserve = std::size_t{200} << 20;
 
 const bool heap_on_huge_pages = [] {

@@ -7,6 +7,7 @@
 
 #include "cli.h"
 #include "rangefill/eval/patches.h"
+#include "rangefill/inpaint/inpainters.h"
 
 namespace rangefill::cli {
 

@@ -454,11 +454,12 @@ void add_repair_command(CLI::App& app, Runner& runner) {
       ->check(CLI::IsMember({"greedy", "none"}));
   sub->add_option("--inpainter", plane.inpainter, inpainter_help())->capture_default_str();
   add_foe_inference_options(sub, plane.inpainting);
-  sub->add_option("--alpha", plane.inpainting.mls_alpha,
+  sub->add_option("--alpha", plane.inpainting.mls.alpha,
                   "mls: alpha of the weights exp(-alpha d^2)/d^2 (eq. 6), d in pixels")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 100.0));
-  sub->add_option("--radius", plane.inpainting.radius, "Neighbourhood radius in pixels (telea, ns)")
+  sub->add_option("--radius", plane.inpainting.opencv.radius,
+                  "Neighbourhood radius in pixels (telea, ns)")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 100.0));
   sub->add_option(

@@ -9,7 +9,7 @@
 
 #include "rangefill/core/depth_image.h"
 #include "rangefill/core/parallel.h"
-#include "rangefill/inpaint/inpainter.h"
+#include "rangefill/inpaint/inpainters.h"
 #include "rangefill/inpaint/trend.h"
 
 namespace rangefill {
@@ -28,7 +28,7 @@ std::vector<std::string> depth_filler_names();
 struct DepthFillOptions {
   /// Fill every hole at once along lines, without steps 1–2 below hole by hole: each pixel
   /// interpolated in inverse depth between the valid pixels it sees along its row, column and
-  /// diagonals, the far surface preferred. A few ms a VGA frame; less accurate at depth edges
+  /// diagonals, the far surface preferred. Fast, and less accurate at depth edges
   /// (docs/depth-maps.md). Reads discontinuity, threads (bands of rows), color, max_hole_pixels
   /// and keep_border of the options below.
   bool fast = false;

@@ -13,7 +13,7 @@
 #include "rangefill/image/back_projection.h"
 #include "rangefill/image/projection.h"
 #include "rangefill/image/range_image.h"
-#include "rangefill/inpaint/inpainter.h"
+#include "rangefill/inpaint/inpainters.h"
 #include "rangefill/inpaint/trend.h"
 
 namespace rangefill {
@@ -30,8 +30,8 @@ struct PlaneFillerOptions {
   InpainterOptions inpainting;
   /// Trend removed before inpainting and added back (trend.h); the back-end then only restores the
   /// residual. OpenCV's telea and ns are weighted means at heart and, on curved surfaces, pull a
-  /// fill towards the lower ring around the hole (a cap of a sphere came back below its cutting
-  /// plane); a quadric continued from the rim overshoots a wide spherical cap. Automatic by
+  /// fill towards the lower ring around the hole (below the cutting plane of a spherical cap);
+  /// a quadric continued from the rim overshoots a wide spherical cap. Automatic by
   /// default: the sphere where it fits the rim better, else the quadric. `none` is the paper's
   /// pipeline, for ablations.
   TrendKind trend = TrendKind::automatic;

@@ -7,6 +7,16 @@
 
 namespace rangefill {
 
+/// How the "foe" back-end is made (inpainters.h).
+struct FoeBackendOptions {
+  std::string model = "depth";  // a shipped model's name or a model file
+  /// What inference starts from, "harmonic" (its own Laplace fill) or another back-end's name
+  /// (not foe): E is not convex, and the MAP found is the local minimum near the start.
+  std::string start = "harmonic";
+  double tolerance = 1e-6;  // stop when a step lowers E by less than this share of E
+  int iterations = 100;     // or after this many steps
+};
+
 /// MAP inpainting (foe_map) on the mask's bounding box grown by the filter
 /// footprint (the only cliques that change), inputs divided by foe_input_divisor. Known pixels are
 /// returned exactly. With a `start` back-end, inference starts from that back-end's fill of the

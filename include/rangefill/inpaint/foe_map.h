@@ -30,8 +30,8 @@ struct FoeMapOptions {
 /// not convex. Deterministic; a mask covering the whole image gives zeros (nothing to go by).
 ///  - lbfgs: L-BFGS whose initial inverse Hessian is (L + t·L²)⁻¹ scaled, L the 5-point Laplacian
 ///    over the unknowns: t is fitted to the model so that the polynomial follows the spectrum of
-///    the Gaussian field with the model's filters (spread ~6 against ~44 for L alone on the
-///    shipped models); (L + tL²)⁻¹ = (I + tL)⁻¹L⁻¹ is one sparse 5-point factorisation and a
+///    the Gaussian field with the model's filters far more closely than L alone does;
+///    (L + tL²)⁻¹ = (I + tL)⁻¹L⁻¹ is one sparse 5-point factorisation and a
 ///    Chebyshev polynomial in the well-conditioned I + tL. Backtracking (Armijo) line
 ///    search; E and ∇E by blocked single-precision matrix products, summed in double.
 ///  - newton: steps x ← x − M⁻¹∇E, reusing each sparse Cholesky factorisation (CHOLMOD) while it

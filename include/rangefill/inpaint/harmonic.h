@@ -30,8 +30,8 @@ LaplaceSystem laplace_system(const cv::Mat& values, const cv::Mat& mask);
 /// The matrix of laplace_system(values, mask) factorised (LDLᵀ), its pixels eliminated in
 /// nested-dissection order (George 1973: the region's bounding box cut in two across its longer
 /// side, each half so in turn, the pixels on the cut last): O(n log n) fill and O(n^1.5) work for
-/// a grid, found in O(n log n), where Eigen's minimum-degree ordering alone took longer than the
-/// factorisation (a 40 000-pixel hole: 75 ms). Throws ProcessingError when the matrix is not SPD.
+/// a grid, found in O(n log n), where Eigen's minimum-degree ordering alone takes longer than the
+/// factorisation. Throws ProcessingError when the matrix is not SPD.
 class LaplaceFactor {
  public:
   LaplaceFactor(const Eigen::SparseMatrix<double>& matrix, const cv::Mat& mask);

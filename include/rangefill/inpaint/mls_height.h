@@ -14,10 +14,15 @@
 
 namespace rangefill {
 
+struct MlsHeightOptions {
+  double alpha = 1.0 / 64;  // α of eq. 6, per squared pixel (docs/backends.md)
+  double ring = 3;          // known pixels within this many pixels of a hole are fitted
+};
+
 class MlsHeightInpainter : public Inpainter {
  public:
-  /// Throws InvalidInput unless options.mls_alpha is finite and ≥ 0 and options.mls_ring ≥ 1.
-  explicit MlsHeightInpainter(const InpainterOptions& options);
+  /// Throws InvalidInput unless options.alpha is finite and ≥ 0 and options.ring ≥ 1.
+  explicit MlsHeightInpainter(const MlsHeightOptions& options = {});
   std::string name() const override { return "mls"; }
   void inpaint(cv::InputArray depth, cv::InputArray mask, cv::OutputArray out) const override;
 

@@ -1,6 +1,6 @@
 // Depth and mask image files: 16-bit PNG or TIFF in millimetres, float TIFF or EXR in metres
 // (conventions: depth/depth_image.h); written atomically. Read and written with libpng, libtiff and
-// OpenEXR (not OpenCV's imgcodecs, whose 140 shared libraries a program would load at start).
+// OpenEXR (not OpenCV's imgcodecs, whose many shared libraries a program would load at start).
 #pragma once
 
 #include <filesystem>

@@ -19,7 +19,7 @@
 
 namespace rangefill {
 
-/// The default candidates: what measured best on the tuning meshes (DEVELOPERS.md).
+/// The default candidates (how they were chosen: DEVELOPERS.md).
 inline constexpr const char* kDefaultCandidates = "fairing,fairing:c1,plane:telea";
 
 struct SelectionOptions {
