@@ -271,19 +271,21 @@ py::dict holes_of(const Mesh& mesh, bool vertices) {
 
 void register_errors(py::module_& module) {
   static py::exception<ProcessingError> processing(module, "ProcessingError", PyExc_RuntimeError);
-  py::register_exception_translator([](std::exception_ptr error) {
-    try {
-      if (error) std::rethrow_exception(error);
-    } catch (const InvalidInput& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
-    } catch (const IoError& e) {
-      PyErr_SetString(PyExc_OSError, e.what());
-    } catch (const ProcessingError& e) {
-      PyErr_SetString(processing.ptr(), e.what());
-    } catch (const Error& e) {
-      PyErr_SetString(PyExc_RuntimeError, e.what());
-    }
-  });
+  // pybind11 takes the translator as void (*)(std::exception_ptr): by value.
+  py::register_exception_translator(
+      [](std::exception_ptr error) {  // NOLINT(performance-unnecessary-value-param)
+        try {
+          if (error) std::rethrow_exception(error);
+        } catch (const InvalidInput& e) {
+          PyErr_SetString(PyExc_ValueError, e.what());
+        } catch (const IoError& e) {
+          PyErr_SetString(PyExc_OSError, e.what());
+        } catch (const ProcessingError& e) {
+          PyErr_SetString(processing.ptr(), e.what());
+        } catch (const Error& e) {
+          PyErr_SetString(PyExc_RuntimeError, e.what());
+        }
+      });
 }
 
 // `options` with the radius (telea, ns) and foe's inference settings of a call.

@@ -25,7 +25,7 @@ std::optional<fs::path> shared_data_dir() {
 
 fs::path temporary_directory(const std::string& stem) {
   static std::atomic<int> counter{0};
-  const fs::path dir =
+  fs::path dir =
       fs::temp_directory_path() /
       ("rangefill-" + stem + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
   fs::remove_all(dir);

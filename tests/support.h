@@ -121,4 +121,4 @@ TiltedSheet make_tilted_sheet(int n, const Eigen::Matrix3d& rotation, const Vec3
 #define RANGEFILL_REQUIRE_SHARED(dir)                                                  \
   const auto dir##_optional = ::rangefill::testing::shared_data_dir();                 \
   if (!dir##_optional) GTEST_SKIP() << "../shared/data is absent: skipping this test"; \
-  const std::filesystem::path dir = *dir##_optional
+  const std::filesystem::path& dir = *dir##_optional  // NOLINT(bugprone-macro-parentheses): a name

@@ -437,26 +437,26 @@ InpainterOptions depth_inpainting_defaults() {
   return options;
 }
 
-DepthFillStats fill_depth(cv::InputArray depth_in, cv::InputArray mask_in, cv::OutputArray filled,
+DepthFillStats fill_depth(cv::InputArray depth, cv::InputArray invalid_mask, cv::OutputArray filled,
                           const DepthFillOptions& options) {
-  check_depth_type(depth_in.type(), "fill_depth");
-  if (depth_in.empty()) throw InvalidInput("fill_depth: the depth image is empty");
-  const cv::Mat depth = depth_in.getMat();
-  const cv::Mat z = depth_in_metres(depth);
+  check_depth_type(depth.type(), "fill_depth");
+  if (depth.empty()) throw InvalidInput("fill_depth: the depth image is empty");
+  const cv::Mat source = depth.getMat();
+  const cv::Mat z = depth_in_metres(source);
   cv::Mat to_fill, data;
-  if (mask_in.empty()) {
+  if (invalid_mask.empty()) {
     to_fill = z == 0;
     data = to_fill == 0;
   } else {
-    if (mask_in.type() != CV_8UC1) {
+    if (invalid_mask.type() != CV_8UC1) {
       throw InvalidInput("fill_depth: mask must be CV_8UC1, not " +
-                         cv::typeToString(mask_in.type()));
+                         cv::typeToString(invalid_mask.type()));
     }
-    if (mask_in.size() != depth.size()) {
-      throw InvalidInput("fill_depth: mask is " + size_text(mask_in.size()) + " but depth is " +
-                         size_text(depth.size()));
+    if (invalid_mask.size() != source.size()) {
+      throw InvalidInput("fill_depth: mask is " + size_text(invalid_mask.size()) +
+                         " but depth is " + size_text(source.size()));
     }
-    to_fill = mask_in.getMat() != 0;
+    to_fill = invalid_mask.getMat() != 0;
     data = (z > 0) & (to_fill == 0);
   }
   if (!(options.discontinuity > 0) || options.margin < 1 || options.max_hole_pixels < 0 ||
@@ -465,7 +465,7 @@ DepthFillStats fill_depth(cv::InputArray depth_in, cv::InputArray mask_in, cv::O
         "fill_depth: discontinuity must be positive, margin and threads at least 1 and "
         "max_hole_pixels and backend_max_pixels not negative");
   }
-  const cv::Mat color = guide_color(options.color, depth.size(), "fill_depth");
+  const cv::Mat color = guide_color(options.color, source.size(), "fill_depth");
   const std::unique_ptr<Inpainter> inpainter =
       options.fast || options.inpainter == kAlongLines
           ? nullptr
@@ -474,7 +474,7 @@ DepthFillStats fill_depth(cv::InputArray depth_in, cv::InputArray mask_in, cv::O
   cv::Mat labels, stats, centroids;
   const int components =
       cv::connectedComponentsWithStats(to_fill, labels, stats, centroids, 8, CV_32S, cv::CCL_BBDT);
-  depth.copyTo(filled);
+  source.copyTo(filled);
   cv::Mat out = filled.getMat();
   std::vector<HoleOutcome> outcomes(std::max(0, components - 1));
   std::vector<std::exception_ptr> failures(outcomes.size());

@@ -94,7 +94,7 @@ BenchmarkMethod pipeline_method(const std::string& name, RepairOptions options) 
           }};
 }
 
-BenchmarkMethod baseline_method(BaselineOptions options) {
+BenchmarkMethod baseline_method(const BaselineOptions& options) {
   return {baseline_name(options.method),
           [options](const Mesh& mesh, int loop, const ImagesCallback&) {
             BaselineOptions for_loop = options;

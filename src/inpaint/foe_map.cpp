@@ -162,7 +162,7 @@ LaplacianPolynomial fit_laplacian_polynomial(const FoeModel& model) {
     for (int x = 0; x < size; ++x) phase[a].push_back(std::polar(1.0, -M_PI * a * x / kSteps));
   }
   // Ĵ_i(ω_a, ω_b) = Σ_y phase[b][y] · rows[y][a], rows[y][a] = Σ_x J_i(y, x) · phase[a][x].
-  std::vector<double> symbol(kSteps * kSteps, 0.0), laplacian;
+  std::vector<double> symbol(static_cast<size_t>(kSteps) * kSteps, 0.0), laplacian;
   std::vector<std::complex<double>> rows(static_cast<size_t>(size) * (kSteps + 1));
   for (int i = 0; i < model.count(); ++i) {
     for (int y = 0; y < size; ++y) {

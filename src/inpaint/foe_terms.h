@@ -122,7 +122,7 @@ class FilterMatrix {
         for (const cv::Point& t : offset.taps) {
           const cv::Point centre = p - t;  // of the clique; none outside the image
           if (centre.x >= 0 && centre.y >= 0 && centre.x < cols && centre.y < rows) {
-            const double* w = &weights[(centre.y * cols + centre.x) * count_];
+            const double* w = &weights[static_cast<size_t>(centre.y * cols + centre.x) * count_];
             for (int i = 0; i < count_; ++i) sum += w[i] * product[i];
           }
           product += count_;

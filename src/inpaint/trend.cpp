@@ -177,13 +177,13 @@ Trend fit_trend(const cv::Mat& values, const cv::Mat& labels, TrendKind kind, do
   }
   const bool heights = height_unit > 0;
   if (heights && kind == TrendKind::sphere) {
-    const Trend sphere = fit_sphere(trend, samples, hole_points, height_unit);
+    Trend sphere = fit_sphere(trend, samples, hole_points, height_unit);
     if (sphere.kind == TrendKind::sphere) return sphere;
   }
   const TrendKind polynomial = kind == TrendKind::plane ? TrendKind::plane : TrendKind::quadric;
-  const Trend fitted = fit_polynomial(trend, samples, polynomial);
+  Trend fitted = fit_polynomial(trend, samples, polynomial);
   if (heights && kind == TrendKind::automatic && fitted.kind == TrendKind::quadric) {
-    const Trend sphere = fit_sphere(trend, samples, hole_points, height_unit);
+    Trend sphere = fit_sphere(trend, samples, hole_points, height_unit);
     if (sphere.kind == TrendKind::sphere &&
         squared_residual(sphere, samples) < squared_residual(fitted, samples)) {
       return sphere;

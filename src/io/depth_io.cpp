@@ -27,7 +27,7 @@ std::string lower_extension(const fs::path& path) {
 cv::Mat decode_single_channel(const fs::path& path) {
   const std::string bytes = read_file(path);
   if (bytes.empty()) throw InvalidInput(path.string() + ": file is empty");
-  const cv::Mat image = detail::decode_image(bytes, path.string());
+  cv::Mat image = detail::decode_image(bytes, path.string());
   if (image.channels() != 1) {
     throw InvalidInput(path.string() + ": has " + std::to_string(image.channels()) +
                        " channels; a depth or mask image has one");
@@ -54,7 +54,7 @@ cv::Mat read_mask_image(const fs::path& path) {
 cv::Mat read_color_image(const fs::path& path) {
   const std::string bytes = read_file(path);
   if (bytes.empty()) throw InvalidInput(path.string() + ": file is empty");
-  const cv::Mat image = detail::decode_color_image(bytes, path.string());
+  cv::Mat image = detail::decode_color_image(bytes, path.string());
   if (image.depth() != CV_8U || (image.channels() != 1 && image.channels() != 3)) {
     throw InvalidInput(path.string() + ": " + cv::typeToString(image.type()) +
                        " is not a colour image: expected 8-bit grey or colour (RGB)");

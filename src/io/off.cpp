@@ -118,7 +118,7 @@ class OffParser {
         fail_here(quote(keyword_) + " files (texture coordinates, homogeneous or n-dimensional " +
                   "vertices) are not supported");
       }
-      if (prefix != "" && prefix != "C" && prefix != "N" && prefix != "CN" && prefix != "NC") {
+      if (!prefix.empty() && prefix != "C" && prefix != "N" && prefix != "CN" && prefix != "NC") {
         fail_here("not an OFF file: unknown keyword " + quote(first));
       }
       colours_ = prefix.find('C') != prefix.npos;

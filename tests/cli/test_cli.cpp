@@ -79,8 +79,8 @@ std::string triangle_body(float nan_or_zero = 0) {
 TEST(Cli, InfoAndHolesDescribeAMesh) {
   const fs::path dir = testing::temporary_directory("cli-info");
   Mesh grid = testing::make_grid(6);
-  grid.triangles.erase(grid.triangles.begin() + 2 * (3 * 6 + 3),
-                       grid.triangles.begin() + 2 * (3 * 6 + 3) + 2);
+  const long first = 2L * (3 * 6 + 3);  // the two triangles of quad (3, 3)
+  grid.triangles.erase(grid.triangles.begin() + first, grid.triangles.begin() + first + 2);
   grid.face_hole.resize(grid.triangles.size());
   write_mesh(grid, dir / "grid.ply");
 
@@ -689,7 +689,7 @@ TEST(Cli, BenchShardsMergeIntoTheUnshardedRun) {
   ASSERT_EQ(whole.exit_code, 0) << whole.err;
   for (const char* shard : {"0/2", "1/2"}) {
     const std::string out = (dir / ("shard" + std::string(1, shard[0]))).string();
-    const Outcome part = run(common + " --shard " + shard + " --out " + out);
+    const Outcome part = run(common + (std::string(" --shard ") + shard) + (" --out " + out));
     ASSERT_EQ(part.exit_code, 0) << part.err;
   }
   const nlohmann::json shard0 = nlohmann::json::parse(slurp(dir / "shard0" / "shard-0-of-2.json"));

@@ -26,7 +26,7 @@ TEST(Mls, ProjectsOntoASphere) {
   std::uniform_real_distribution<double> offset(-0.03, 0.03);
   double worst = 0, worst_normal = 0;
   for (int i = 0; i < 200; ++i) {
-    const Vec3 on = sphere_samples(997)[i * 4];
+    const Vec3 on = sphere_samples(997)[static_cast<size_t>(i) * 4];
     const Vec3 query = on * (1 + offset(random)) + Vec3(offset(random), offset(random), 0) * 0.3;
     const auto projected = surface.project(query);
     ASSERT_TRUE(projected);

@@ -13,9 +13,6 @@
 namespace rangefill {
 namespace {
 
-using testing::make_grid;
-using testing::remove_faces;
-
 // A 30×30 grid, rotated and moved, without the faces inside a disk of radius 6.5; its zone is
 // every face.
 // A 30×30 sheet, tilted and moved, with a hole of radius 6.5 off the grid's lines.

@@ -12,9 +12,6 @@
 namespace rangefill {
 namespace {
 
-using testing::make_grid;
-using testing::remove_faces;
-
 // A square is simple; so are a triangle and a non-convex L shape.
 TEST(IsSimplePolygon, AcceptsSimplePolygons) {
   EXPECT_TRUE(is_simple_polygon({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));

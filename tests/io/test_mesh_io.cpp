@@ -91,7 +91,7 @@ std::string error_of(const std::string& bytes, MeshFormat format) {
   try {
     parse_mesh(bytes, format, name);
   } catch (const InvalidInput& error) {
-    const std::string message = error.what();
+    std::string message = error.what();
     EXPECT_EQ(message.rfind(name + ": ", 0), 0u) << message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
     return message;
@@ -517,7 +517,8 @@ TEST(StlIo, WeldingNumbersVerticesInOrderOfFirstOccurrence) {
   // A strip whose faces visit the vertices in index order comes back numbered as it was.
   std::vector<Vec3> positions;
   std::vector<Triangle> triangles;
-  for (int i = 0; i < 6; ++i) positions.emplace_back(i / 2 + 0.1f, (i % 2) * 0.75, 0.5);
+  for (int i = 0; i < 6; ++i)
+    positions.emplace_back(static_cast<float>(i / 2) + 0.1f, (i % 2) * 0.75, 0.5);
   for (int i = 0; i < 4; ++i) triangles.push_back({i, i + 1, i + 2});
   const Mesh strip = make_mesh(positions, triangles);
   const ReadResult back = round_trip(strip, MeshFormat::stl);

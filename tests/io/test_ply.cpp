@@ -151,7 +151,7 @@ TEST(PlyIo, MalformedFilesGiveOneLineErrors) {
       "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
       "property float y\nproperty float z\nelement face 1\n"
       "property list uchar int vertex_indices\nend_header\n";
-  std::string body(3 * 12, '\0');
+  std::string body(size_t{3} * 12, '\0');
   const float one = 1.0f;
   std::memcpy(&body[12], &one, 4);
   std::memcpy(&body[28], &one, 4);

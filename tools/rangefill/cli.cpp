@@ -69,7 +69,7 @@ std::vector<std::string> split_list(const std::string& text) {
 std::filesystem::path color_image_of(const std::filesystem::path& dir,
                                      const std::filesystem::path& frame) {
   for (const char* extension : {".png", ".jpg", ".jpeg", ".tif", ".tiff"}) {
-    const std::filesystem::path candidate = dir / (frame.stem().string() + extension);
+    std::filesystem::path candidate = dir / (frame.stem().string() + extension);
     if (std::filesystem::exists(candidate)) return candidate;
   }
   return {};

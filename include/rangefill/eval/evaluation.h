@@ -56,7 +56,7 @@ struct BenchmarkMethod {
 /// repair() with `options`, on the one loop (options.holes and on_images set per call, one thread).
 BenchmarkMethod pipeline_method(const std::string& name, RepairOptions options);
 /// fill_holes_cgal() with `options`, on the one loop; named by baseline_name.
-BenchmarkMethod baseline_method(BaselineOptions options);
+BenchmarkMethod baseline_method(const BaselineOptions& options);
 
 /// One method on one punched hole.
 struct HoleRun {

@@ -24,7 +24,7 @@ struct InpainterOptions {
 /// The back-ends by name ("telea", "ns", ...), or by "foe:MODEL" to choose the FoE model (a shipped
 /// model's name or a model file; overrides options.foe.model). Throws InvalidInput for an unknown
 /// name, listing the known ones.
-std::unique_ptr<Inpainter> make_inpainter(std::string_view name,
+std::unique_ptr<Inpainter> make_inpainter(std::string_view spec,
                                           const InpainterOptions& options = {});
 
 /// The names make_inpainter accepts, in a stable order.

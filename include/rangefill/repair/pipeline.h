@@ -102,8 +102,8 @@ std::array<long long, 3> merge_fill(Mesh& mesh, const Fill& fill, int hole_id);
 /// left open; so is, without a try, a loop through one of the input's unfillable_vertices
 /// (topology.h), so that no generated face touches a non-manifold element. d_m is the input's mean
 /// edge length throughout. `open_loops` says why each loop of the result is open.
-RepairResult repair(const Mesh& mesh, const RepairOptions& options = {});
-/// The same, repairing `mesh` itself rather than a copy: one mesh in memory, not two.
-RepairResult repair(Mesh&& mesh, const RepairOptions& options = {});
+RepairResult repair(const Mesh& input, const RepairOptions& options = {});
+/// The same, repairing `input` itself rather than a copy: one mesh in memory, not two.
+RepairResult repair(Mesh&& input, const RepairOptions& options = {});
 
 }  // namespace rangefill
