@@ -341,6 +341,10 @@ int find_halfedge(const Mesh& mesh, const MeshTopology& topology, int from, int 
   return first;
 }
 
+bool has_edge(const Mesh& mesh, const MeshTopology& topology, int a, int b) {
+  return find_halfedge(mesh, topology, a, b) >= 0 || find_halfedge(mesh, topology, b, a) >= 0;
+}
+
 }  // namespace rangefill
 
 namespace rangefill {

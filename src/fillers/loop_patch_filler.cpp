@@ -66,7 +66,7 @@ class LeastAreaFiller : public Filler {
     for (size_t i = 0; i < hole.vertices.size(); ++i) {
       for (size_t j = i + 2; j < hole.vertices.size(); ++j) {
         const int a = hole.vertices[i], b = hole.vertices[j];
-        if (find_halfedge(mesh, topology, a, b) >= 0 || find_halfedge(mesh, topology, b, a) >= 0) {
+        if (has_edge(mesh, topology, a, b)) {
           forbidden.emplace(static_cast<int>(i), static_cast<int>(j));
         }
       }

@@ -66,10 +66,6 @@ std::string refusal_name(Refusal refusal) {
 
 namespace {
 
-bool mesh_has_edge(const Mesh& mesh, const MeshTopology& topology, int a, int b) {
-  return find_halfedge(mesh, topology, a, b) >= 0 || find_halfedge(mesh, topology, b, a) >= 0;
-}
-
 // A fill's triangles as corner positions and corner ids (mesh ids on the boundary, -1 for new
 // points), with their bounding boxes.
 struct PlacedTriangles {
@@ -142,7 +138,7 @@ std::optional<std::string> fill_defect(const Mesh& mesh, const MeshTopology& top
       return along_loop ? "a boundary edge is used twice" : "the fill has a border of its own";
     }
     if (a < boundary_size && b < boundary_size && !along_loop && (a + 1) % boundary_size != b &&
-        a < b && mesh_has_edge(mesh, topology, fill.boundary[a], fill.boundary[b])) {
+        a < b && has_edge(mesh, topology, fill.boundary[a], fill.boundary[b])) {
       return "a chord duplicates an existing mesh edge";
     }
   }

@@ -108,7 +108,7 @@ bool valid_chord(const Mesh& mesh, const MeshTopology& topology, const BoundaryL
                  int j) {
   const int n = static_cast<int>(hole.vertices.size());
   const int a = hole.vertices[i], b = hole.vertices[j];
-  if (find_halfedge(mesh, topology, a, b) >= 0 || find_halfedge(mesh, topology, b, a) >= 0) {
+  if (has_edge(mesh, topology, a, b)) {
     return false;
   }
   // The direction right of the boundary edge from -> to, in the plane of its face.

@@ -43,7 +43,8 @@ const std::vector<Registration>& registry() {
          if (o.foe.start != "harmonic") start = make_inpainter(o.foe.start, o);
          return std::make_unique<FoeInpainter>(load_foe_model(o.foe.model), map, std::move(start));
        }},
-      {"mls", [](const InpainterOptions& o) { return std::make_unique<MlsHeightInpainter>(o.mls); }},
+      {"mls",
+       [](const InpainterOptions& o) { return std::make_unique<MlsHeightInpainter>(o.mls); }},
   };
   return backends;
 }

@@ -159,6 +159,9 @@ Vec3 vertex_normal(const Mesh& mesh, const MeshTopology& topology, int v);
 /// has it. O(valence).
 int find_halfedge(const Mesh& mesh, const MeshTopology& topology, int from, int to);
 
+/// Whether a face has the edge between vertices `a` and `b`, either way round.
+bool has_edge(const Mesh& mesh, const MeshTopology& topology, int a, int b);
+
 /// The faces within `rings` rings of `vertices`: ring 1 holds the faces of the vertices, ring k+1
 /// those of the vertices of ring k. Ascending.
 std::vector<int> faces_within_rings(const Mesh& mesh, const MeshTopology& topology,
