@@ -509,7 +509,7 @@ void add_repair_command(CLI::App& app, Runner& runner) {
   sub->add_flag("--ascii", command->ascii, "Write ASCII instead of binary (PLY, STL)");
   sub->add_flag("--in-place", command->in_place, "Allow OUT to be the input file");
   sub->add_flag("--json", command->json, "Print the report as JSON instead of a table");
-  sub->callback([command, sub, &runner] { runner = [command] { return run_repair(*command); }; });
+  sub->callback([command, &runner] { runner = [command] { return run_repair(*command); }; });
 }
 
 }  // namespace rangefill::cli
