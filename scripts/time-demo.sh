@@ -20,6 +20,10 @@ if [ ! -f "$fresh/base.tar" ]; then
   rm -rf "$target"
   debootstrap --variant=minbase bookworm "$target" http://deb.debian.org/debian >/dev/null
   cp /etc/resolv.conf "$target/etc/"
+  if [ -f /etc/apt/sources.list.d/debian.sources ]; then  # the host's mirrors and security updates
+    rm -f "$target/etc/apt/sources.list"
+    cp /etc/apt/sources.list.d/debian.sources "$target/etc/apt/sources.list.d/"
+  fi
   mount_system
   chroot "$target" bash -c "apt-get update -qq && DEBIAN_FRONTEND=noninteractive \
     apt-get install -y -qq --no-install-recommends ${base_packages[*]} >/dev/null && apt-get clean"
