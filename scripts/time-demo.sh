@@ -14,10 +14,18 @@ target="$fresh/root"
 cleanup() { umount "$target/proc" "$target/dev" "$target/sys" 2>/dev/null || true; }
 trap cleanup EXIT
 mount_system() { for d in proc dev sys; do mount --bind "/$d" "$target/$d"; done; }
+# Never delete through a bind mount left by a killed run.
+remove_target() {
+  cleanup
+  for d in proc dev sys; do
+    ! mountpoint -q "$target/$d" || { echo "time-demo: $target/$d is still mounted" >&2; exit 1; }
+  done
+  rm -rf "$target"
+}
 
 if [ ! -f "$fresh/base.tar" ]; then
   echo "time-demo: making the base root (once)"
-  rm -rf "$target"
+  remove_target
   debootstrap --variant=minbase bookworm "$target" http://deb.debian.org/debian >/dev/null
   cp /etc/resolv.conf "$target/etc/"
   if [ -f /etc/apt/sources.list.d/debian.sources ]; then  # the host's mirrors and security updates
@@ -31,7 +39,7 @@ if [ ! -f "$fresh/base.tar" ]; then
   tar -C "$target" -cf "$fresh/base.tar" .
 fi
 
-rm -rf "$target" && mkdir -p "$target" && tar -C "$target" -xf "$fresh/base.tar"
+remove_target && mkdir -p "$target" && tar -C "$target" -xf "$fresh/base.tar"
 mount_system
 git clone -q "$root" "$target/root/rangefill"
 seconds() { local start=$SECONDS; chroot "$target" bash -c "cd /root/rangefill && $1" >&2; echo $((SECONDS - start)); }
