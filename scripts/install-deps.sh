@@ -1,17 +1,23 @@
 #!/usr/bin/env bash
 # Installs the Debian packages rangefill needs that are missing. Silent when nothing is missing.
-# --demo: only what the library and the rangefill binary need (scripts/demo.sh); without it, also
-# what the tests, the benchmarks, the Python module and the CI stages need (scripts/test.sh).
+# --demo: only what the library and the rangefill binary without the research sub-commands and
+# point-cloud meshing need (scripts/demo.sh); without it, also what those, the tests, the
+# benchmarks, the Python module and the CI stages need (scripts/test.sh).
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config
-  libeigen3-dev libopencv-dev libopencv-contrib-dev libpcl-dev libceres-dev libsuitesparse-dev
-  libcgal-dev nlohmann-json3-dev libcli11-dev zlib1g-dev libpng-dev libjpeg-dev libtiff-dev
-  libopenexr-dev
-  libjs-three  # report.html's 3D views (three.js, inlined into the binary)
+  libeigen3-dev libsuitesparse-dev libcgal-dev nlohmann-json3-dev libcli11-dev zlib1g-dev
+  libpng-dev libjpeg-dev libtiff-dev libopenexr-dev
+  # The three OpenCV modules the library uses (cmake/OpenCVModules.cmake finds them without
+  # libopencv-dev, which installs all of OpenCV, VTK, FFmpeg and GStreamer).
+  libopencv-core-dev libopencv-imgproc-dev libopencv-photo-dev
 )
 if [ "${1:-}" != --demo ]; then
   packages+=(
+    libpcl-dev  # point-cloud meshing (RANGEFILL_WITH_PCL)
+    libceres-dev libopencv-contrib-dev  # rangefill_eval (RANGEFILL_BUILD_RESEARCH)
+    libopencv-dev  # OpenCV's CMake package, with imgcodecs for the tests
+    libjs-three  # the 3D views of bench's report.html (three.js, inlined into the binary)
     libgtest-dev libbenchmark-dev
     pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module (python/)
     python3-matplotlib  # the plots of python/examples/fill_depth_folder.py

@@ -24,6 +24,7 @@ remove_target() {
 }
 
 if [ ! -f "$fresh/base.tar" ]; then
+  command -v debootstrap >/dev/null || { echo "time-demo: needs debootstrap (apt-get install debootstrap)" >&2; exit 1; }
   echo "time-demo: making the base root (once)"
   remove_target
   debootstrap --variant=minbase bookworm "$target" http://deb.debian.org/debian >/dev/null

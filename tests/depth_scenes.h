@@ -9,7 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "rangefill/core/mesh.h"
-#include "rangefill/eval/render.h"
+#include "rangefill/core/render.h"
 
 namespace rangefill::testing::depth_scenes {
 

@@ -50,6 +50,25 @@ Mesh make_mesh(std::vector<Vec3> positions, std::vector<Triangle> triangles) {
   return mesh;
 }
 
+Mesh extract_faces(const Mesh& mesh, const std::vector<int>& faces) {
+  std::vector<int> new_index(mesh.vertex_count(), -1);
+  std::vector<Vec3> positions;
+  std::vector<Triangle> triangles;
+  for (int face : faces) {
+    Triangle t;
+    for (int k = 0; k < 3; ++k) {
+      int& index = new_index[mesh.triangles[face][k]];
+      if (index < 0) {
+        index = static_cast<int>(positions.size());
+        positions.push_back(mesh.positions[mesh.triangles[face][k]]);
+      }
+      t[k] = index;
+    }
+    triangles.push_back(t);
+  }
+  return make_mesh(std::move(positions), std::move(triangles));
+}
+
 namespace {
 
 [[noreturn]] void fail(const std::string& source, const std::string& what) {

@@ -217,25 +217,6 @@ std::uint64_t seed_for_mesh(std::uint64_t seed, const std::string& name) {
   return seed ^ hash;
 }
 
-Mesh extract_faces(const Mesh& mesh, const std::vector<int>& faces) {
-  std::vector<int> new_index(mesh.vertex_count(), -1);
-  std::vector<Vec3> positions;
-  std::vector<Triangle> triangles;
-  for (int face : faces) {
-    Triangle t;
-    for (int k = 0; k < 3; ++k) {
-      int& index = new_index[mesh.triangles[face][k]];
-      if (index < 0) {
-        index = static_cast<int>(positions.size());
-        positions.push_back(mesh.positions[mesh.triangles[face][k]]);
-      }
-      t[k] = index;
-    }
-    triangles.push_back(t);
-  }
-  return make_mesh(std::move(positions), std::move(triangles));
-}
-
 PunchResult punch_holes(const Mesh& mesh, const PunchOptions& options) {
   if (mesh.vertex_count() == 0) throw InvalidInput("punch: the mesh has no vertices");
   check_options(options);

@@ -1,5 +1,5 @@
-// The module librangefill_greedy.so (repair/greedy_projection.h): the only translation unit that
-// includes PCL's surface and feature modules.
+// The module librangefill_greedy.so (point_cloud/greedy_projection.h): the only translation unit
+// that includes PCL's surface and feature modules.
 #include "point_cloud/greedy_projection.h"
 
 #include <cmath>

@@ -1,5 +1,5 @@
 // Meshing point clouds: PCL's normal estimation and greedy projection are in the module of
-// repair/greedy_projection.h.
+// point_cloud/greedy_projection.h, built when RANGEFILL_WITH_PCL is.
 #include "rangefill/point_cloud/point_cloud.h"
 
 #include <algorithm>
@@ -35,9 +35,14 @@ constexpr int kCleaningRounds = 16;
 // Two faces on an edge whose normals make more than 120° are folded onto each other.
 constexpr double kFoldCosine = -0.5;
 
-// The greedy projection's entry in its module (repair/greedy_projection.h), loaded on the first
-// call from beside this library.
+// The greedy projection's entry in its module (point_cloud/greedy_projection.h), loaded on the
+// first call from beside this library.
 greedy_projection::Entry greedy_projection_entry() {
+  if (!RANGEFILL_WITH_PCL) {
+    throw ProcessingError(
+        "meshing: this rangefill was built without PCL, which meshes point clouds (configure with "
+        "-DRANGEFILL_WITH_PCL=ON and libpcl-dev installed)");
+  }
   static const auto entry = reinterpret_cast<greedy_projection::Entry>(
       module_entry(greedy_projection::kModule, greedy_projection::kEntry,
                    reinterpret_cast<const void*>(&mesh_point_cloud), "meshing"));

@@ -91,5 +91,20 @@ TEST(TriangulatePolygon, DegeneratePolygonStillYieldsNMinusTwoTriangles) {
   EXPECT_EQ(triangulate_polygon(positions, {0, 1, 2, 3}).size(), 2u);
 }
 
+// extract_faces renumbers vertices in first-use order and keeps positions and orientation.
+TEST(ExtractFaces, RenumbersInFirstUseOrder) {
+  const Mesh cube = testing::make_cube();
+  // Faces 3 = {5, 7, 6} and 2 = {4, 5, 6}, in that order: 5 → 0, 7 → 1, 6 → 2, 4 → 3.
+  const Mesh top = extract_faces(cube, {3, 2});
+  ASSERT_EQ(top.vertex_count(), 4);
+  EXPECT_EQ(top.triangles, (std::vector<Triangle>{{0, 1, 2}, {3, 0, 2}}));
+  EXPECT_EQ(top.positions[0], cube.positions[5]);
+  EXPECT_EQ(top.positions[1], cube.positions[7]);
+  EXPECT_EQ(top.positions[2], cube.positions[6]);
+  EXPECT_EQ(top.positions[3], cube.positions[4]);
+  EXPECT_EQ(top.face_hole, std::vector<int>(2, kOriginal));
+  EXPECT_EQ(extract_faces(cube, {}).vertex_count(), 0);
+}
+
 }  // namespace
 }  // namespace rangefill

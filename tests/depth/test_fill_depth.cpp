@@ -1,7 +1,7 @@
 // fill_depth on planes, quadrics and discontinuities, its options and argument checks, and on
 // sensor frames.
+#include "rangefill/core/render.h"
 #include "rangefill/depth/fill_depth.h"
-#include "rangefill/eval/render.h"
 #include "rangefill/eval/sensor_holes.h"
 #include "rangefill/io/depth_io.h"
 

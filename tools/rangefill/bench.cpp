@@ -16,6 +16,7 @@
 #include "rangefill/eval/punch.h"
 #include "rangefill/inpaint/inpainters.h"
 #include "rangefill/io/depth_io.h"
+#include "research.h"
 
 namespace rangefill::cli {
 

@@ -26,15 +26,6 @@ Mesh load_mesh(const std::string& path, const ReadOptions& options) {
   return std::move(result.mesh);
 }
 
-void add_patch_options(CLI::App* command, HoleSampleOptions& samples) {
-  command->add_option("--patches", samples.patches.count, "Patches per mesh")
-      ->capture_default_str();
-  command->add_option("--patch-size", samples.patches.size, "Patch size in pixels")
-      ->capture_default_str();
-  command->add_option("--seed", samples.patches.seed, "Seed of patches and masks")
-      ->capture_default_str();
-}
-
 FillerChain chain_from_arguments(const std::string& filler, const std::string& fallback,
                                  const FillerOptions& fillers) {
   try {

@@ -10,7 +10,6 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "rangefill/eval/patches.h"
 #include "rangefill/inpaint/inpainters.h"
 #include "rangefill/io/mesh_io.h"
 #include "rangefill/repair/filler_options.h"
@@ -72,17 +71,7 @@ using Runner = std::function<int()>;
 void add_info_command(CLI::App& app, Runner& runner);
 void add_holes_command(CLI::App& app, Runner& runner);
 void add_repair_command(CLI::App& app, Runner& runner);
-void add_bench_command(CLI::App& app, Runner& runner);
 void add_depth_command(CLI::App& app, Runner& runner);
-void add_depth_bench_command(CLI::App& app, Runner& runner);
-void add_train_foe_command(CLI::App& app, Runner& runner);
-void add_patch_bench_command(CLI::App& app, Runner& runner);
-
-/// The meshes of ../shared/data/meshes that train-foe holds out and patch-bench scores on.
-inline const char* const kValidationMeshes = "bunny.ply,fandisk.ply,homer.ply";
-
-/// --patches, --patch-size and --seed of the commands that cut depth patches from meshes.
-void add_patch_options(CLI::App* command, HoleSampleOptions& samples);
 
 /// RepairOptions::chain from --filler and --fallback (make_filler_chain), each filler made with
 /// its part of `fillers`; throws UsageError on an unknown name.

@@ -14,12 +14,13 @@
 #include <opencv2/photo.hpp>
 
 #include "cli.h"
+#include "rangefill/core/render.h"
 #include "rangefill/depth/fill_depth.h"
 #include "rangefill/eval/depth_baselines.h"
 #include "rangefill/eval/punch.h"
-#include "rangefill/eval/render.h"
 #include "rangefill/eval/sensor_holes.h"
 #include "rangefill/io/depth_io.h"
+#include "research.h"
 
 namespace rangefill::cli {
 

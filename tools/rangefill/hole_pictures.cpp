@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "rangefill/eval/punch.h"
-#include "rangefill/eval/render.h"
+#include "rangefill/core/mesh.h"
+#include "rangefill/core/render.h"
 
 namespace rangefill::cli {
 

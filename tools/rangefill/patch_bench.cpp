@@ -8,6 +8,7 @@
 #include "cli.h"
 #include "rangefill/eval/patches.h"
 #include "rangefill/inpaint/inpainters.h"
+#include "research.h"
 
 namespace rangefill::cli {
 

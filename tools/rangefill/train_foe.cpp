@@ -9,6 +9,7 @@
 #include "rangefill/eval/patches.h"
 #include "rangefill/inpaint/foe_model.h"
 #include "rangefill/io/mesh_io.h"
+#include "research.h"
 
 namespace rangefill::cli {
 

@@ -87,6 +87,9 @@ void reserve_more(Mesh& mesh, int vertices, int faces);
 /// Makes a mesh from positions and triangles alone, all elements original.
 Mesh make_mesh(std::vector<Vec3> positions, std::vector<Triangle> triangles);
 
+/// The faces `faces` of `mesh` as a mesh of their own (vertices renumbered in first-use order).
+Mesh extract_faces(const Mesh& mesh, const std::vector<int>& faces);
+
 /// Throws InvalidInput, naming `source` and the first violation, if the mesh breaks an invariant
 /// above or has a non-finite coordinate. Linear time, no allocation.
 void validate_mesh(const Mesh& mesh, const std::string& source);

@@ -90,7 +90,4 @@ CurvatureClass curvature_from_name(const std::string& name);
 /// the name, so each mesh gets its own holes and adding a mesh changes no other mesh's.
 std::uint64_t seed_for_mesh(std::uint64_t seed, const std::string& name);
 
-/// The faces `faces` of `mesh` as a mesh of their own (vertices renumbered in first-use order).
-Mesh extract_faces(const Mesh& mesh, const std::vector<int>& faces);
-
 }  // namespace rangefill

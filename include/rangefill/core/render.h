@@ -1,4 +1,5 @@
-// A z-buffer renderer of meshes into depth maps, for the depth benchmarks (no OpenGL).
+// A z-buffer renderer of meshes into depth maps (no OpenGL): the depth benchmarks' scenes and the
+// pictures of repaired holes.
 #pragma once
 
 #include <Eigen/Geometry>

@@ -1,4 +1,4 @@
-#include "rangefill/eval/render.h"
+#include "rangefill/core/render.h"
 
 #include <algorithm>
 #include <array>

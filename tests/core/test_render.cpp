@@ -1,5 +1,5 @@
 // The z-buffer renderer of the depth benchmarks.
-#include "rangefill/eval/render.h"
+#include "rangefill/core/render.h"
 
 #include <gtest/gtest.h>
 
