@@ -1,10 +1,11 @@
 // The colour image that guides fill_depth (DepthFillOptions::color): how alike two pixels look.
 #pragma once
 
-#include <cmath>
 #include <string>
 
 #include <opencv2/core.hpp>
+
+#include "rangefill/inpaint/harmonic.h"
 
 namespace rangefill {
 
@@ -12,10 +13,9 @@ namespace rangefill {
 /// different surfaces: affinities fall off over it as in a joint-bilateral filter.
 constexpr float kColorSigma = 10;
 
-/// exp(−‖a − b‖² / (2 kColorSigma²)), at least 1e-3, so that no guess weighs nothing.
+/// guide_affinity at kColorSigma.
 inline float color_affinity(const cv::Vec3f& a, const cv::Vec3f& b) {
-  const cv::Vec3f d = a - b;
-  return std::max(std::exp(-d.dot(d) / (2 * kColorSigma * kColorSigma)), 1e-3F);
+  return guide_affinity(a, b, kColorSigma);
 }
 
 /// `color` (CV_8UC3 BGR or RGB, CV_8UC1 grey, the depth's `size`) as CV_32FC3, grey replicated;

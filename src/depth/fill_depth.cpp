@@ -5,6 +5,7 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <optional>
 
 #include <Eigen/Dense>
 #include <opencv2/imgproc.hpp>
@@ -13,6 +14,7 @@
 #include "depth/fill_along_lines.h"
 #include "rangefill/core/errors.h"
 #include "rangefill/core/parallel.h"
+#include "rangefill/inpaint/harmonic.h"
 #include "rangefill/inpaint/inpainters.h"
 #include "rangefill/inpaint/pixel_labels.h"
 
@@ -243,9 +245,16 @@ void extend_source_beyond_reach(cv::Mat& z, cv::Mat& source, int reach) {
   source |= far;
 }
 
-// Step 3 of fill_depth: depth (metres) at the hole pixels of a window, restored from `source`.
+// Step 3 of fill_depth: depth (metres) at the hole pixels of a window, restored from `source`;
+// the harmonic back-end guided by the window's `color` (CV_32FC3) when there is one.
 cv::Mat fill_from_source(const cv::Mat& z, const cv::Mat& hole, const cv::Mat& source,
-                         const Inpainter& inpainter, const DepthFillOptions& options) {
+                         const cv::Mat& color, const Inpainter& backend,
+                         const DepthFillOptions& options) {
+  std::optional<HarmonicInpainter> guided;
+  if (!color.empty() && dynamic_cast<const HarmonicInpainter*>(&backend)) {
+    guided.emplace(color, kColorSigma);
+  }
+  const Inpainter& inpainter = guided ? *guided : backend;
   // The source in inverse depth, normalised onto [0, 1].
   cv::Mat inverse;
   cv::divide(1.0, z, inverse, CV_32F);
@@ -352,7 +361,7 @@ HoleOutcome fill_depth_hole(const cv::Mat& z, const cv::Mat& data, const cv::Mat
     } else {
       cv::Mat window_z = z(window), source = side_source.clone();
       if (options.reach > 0) extend_source_beyond_reach(window_z, source, options.reach);
-      side_fill = fill_from_source(window_z, side, source, *backend, options);
+      side_fill = fill_from_source(window_z, side, source, window_color, *backend, options);
     }
     side_fill.copyTo(fill, side);
   }

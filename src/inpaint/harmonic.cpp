@@ -1,6 +1,7 @@
 #include "rangefill/inpaint/harmonic.h"
 
 #include <algorithm>
+#include <utility>
 
 #include <Eigen/Sparse>
 
@@ -8,8 +9,15 @@
 
 namespace rangefill {
 
-LaplaceSystem laplace_system(const cv::Mat& values, const cv::Mat& mask) {
+LaplaceSystem laplace_system(const cv::Mat& values, const cv::Mat& mask, const cv::Mat& guide,
+                             float sigma) {
   CV_Assert(values.type() == CV_64FC1 && mask.type() == CV_8UC1 && mask.size() == values.size());
+  CV_Assert(guide.empty() || (guide.type() == CV_32FC3 && guide.size() == values.size()));
+  const auto weight = [&](int r, int c, int nr, int nc) {
+    return guide.empty() ? 1.0
+                         : static_cast<double>(guide_affinity(guide.at<cv::Vec3f>(r, c),
+                                                              guide.at<cv::Vec3f>(nr, nc), sigma));
+  };
   const int rows = values.rows, cols = values.cols;
   cv::Mat index(values.size(), CV_32S, cv::Scalar(-1));
   int unknowns = 0;
@@ -25,19 +33,20 @@ LaplaceSystem laplace_system(const cv::Mat& values, const cv::Mat& mask) {
     for (int c = 0; c < cols; ++c) {
       const int i = index.at<int>(r, c);
       if (i < 0) continue;
-      int degree = 0;
+      double degree = 0;
       const int neighbours[4][2] = {{r - 1, c}, {r + 1, c}, {r, c - 1}, {r, c + 1}};
       for (const auto& [nr, nc] : neighbours) {
         if (nr < 0 || nr >= rows || nc < 0 || nc >= cols) continue;
-        ++degree;
+        const double w = weight(r, c, nr, nc);
+        degree += w;
         const int j = index.at<int>(nr, nc);
         if (j < 0) {
-          system.rhs[i] += values.at<double>(nr, nc);
+          system.rhs[i] += w * values.at<double>(nr, nc);
         } else {
-          entries.emplace_back(i, j, -1.0);
+          entries.emplace_back(i, j, -w);
         }
       }
-      entries.emplace_back(i, i, static_cast<double>(degree));
+      entries.emplace_back(i, i, degree);
     }
   }
   system.matrix.setFromTriplets(entries.begin(), entries.end());
@@ -95,6 +104,13 @@ Eigen::VectorXd LaplaceFactor::solve(const Eigen::VectorXd& b) const {
   return order_.transpose() * ldlt_.solve(order_ * b).eval();
 }
 
+HarmonicInpainter::HarmonicInpainter(cv::Mat guide, float sigma)
+    : guide_(std::move(guide)), sigma_(sigma) {
+  if (guide_.type() != CV_32FC3 || !(sigma_ > 0)) {
+    throw InvalidInput("harmonic: the guide must be CV_32FC3 and its sigma above 0");
+  }
+}
+
 void HarmonicInpainter::inpaint(cv::InputArray depth_in, cv::InputArray mask_in,
                                 cv::OutputArray out) const {
   const int masked = start_inpainting(depth_in, mask_in, out, name());
@@ -103,7 +119,10 @@ void HarmonicInpainter::inpaint(cv::InputArray depth_in, cv::InputArray mask_in,
   const cv::Mat mask = mask_in.getMat();
   cv::Mat depth;
   depth_in.getMat().convertTo(depth, CV_64F);
-  const LaplaceSystem system = laplace_system(depth, mask);
+  if (!guide_.empty() && guide_.size() != mask.size()) {
+    throw InvalidInput("harmonic: the guide is not the size of the image");
+  }
+  const LaplaceSystem system = laplace_system(depth, mask, guide_, sigma_);
   const Eigen::VectorXd solution = LaplaceFactor(system.matrix, mask).solve(system.rhs);
   std::vector<cv::Point> unknowns;  // row-major, the order of the system
   cv::findNonZero(mask, unknowns);

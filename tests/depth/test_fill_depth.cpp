@@ -320,8 +320,10 @@ TEST(FillDepth, ANearSurfaceGoesOnAcrossTheSilhouetteAHoleCrosses) {
 
 // A colour image parts what depth alone cannot: a picture 3 % in front of its wall (one surface
 // under the 5 % discontinuity) keeps its depth up to its colour edge, where without colour the
-// fill blends the two across the hole.
-TEST(FillDepth, AColourEdgePartsTheGuessesOfOneSurface) {
+// fill blends the two across the hole; along lines and by the (default) harmonic back-end.
+class ColourGuidance : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ColourGuidance, AColourEdgePartsTheGuessesOfOneSurface) {
   cv::Mat truth(kSize, CV_32F, cv::Scalar(2.0f));
   cv::Mat color(kSize, CV_8UC3, cv::Scalar(200, 200, 200));
   truth(cv::Rect(200, 150, 120, 180)).setTo(1.94f);
@@ -331,7 +333,7 @@ TEST(FillDepth, AColourEdgePartsTheGuessesOfOneSurface) {
   input.setTo(0, hole);
   cv::Mat plain, guided;
   DepthFillOptions options;
-  options.inpainter = kAlongLines;  // colour guides the lines
+  options.inpainter = GetParam();
   fill_depth(input, cv::noArray(), plain, options);
   options.color = color;
   fill_depth(input, cv::noArray(), guided, options);
@@ -351,6 +353,8 @@ TEST(FillDepth, AColourEdgePartsTheGuessesOfOneSurface) {
   fill_depth(input, cv::noArray(), guided, options);
   EXPECT_EQ(cv::norm(from_grey, guided, cv::NORM_INF), 0);
 }
+
+INSTANTIATE_TEST_SUITE_P(FillDepth, ColourGuidance, ::testing::Values(kAlongLines, "harmonic"));
 
 // A colour image of another size or type is refused, saying which.
 TEST(FillDepth, RefusesAColourImageThatDoesNotMatch) {

@@ -13,6 +13,7 @@
 #include <opencv2/photo.hpp>
 
 #include "rangefill/core/errors.h"
+#include "rangefill/inpaint/harmonic.h"
 
 namespace rangefill {
 namespace {
@@ -257,6 +258,30 @@ TEST(Harmonic, BorderIsAFreeEdge) {
   mask.setTo(255);  // nothing known
   make_inpainter("harmonic")->inpaint(image, mask, out);
   EXPECT_EQ(cv::countNonZero(out), 0);
+}
+
+// Guided, the membrane bends at the guide's edge: a strip known as 0 on its left end and 1 on its
+// right, its guide dark left of column 10 and light from there, fills with about 0 left of the edge
+// and about 1 right of it, where the unguided fill is the straight ramp between.
+TEST(Harmonic, AGuideEdgePartsTheFill) {
+  const int width = 21;
+  cv::Mat image(3, width, CV_32F, cv::Scalar(0)), mask(3, width, CV_8U, cv::Scalar(255));
+  image.col(width - 1).setTo(1);
+  mask.col(0).setTo(0);
+  mask.col(width - 1).setTo(0);
+  cv::Mat guide(3, width, CV_32FC3, cv::Scalar(20, 20, 20));
+  guide.colRange(10, width).setTo(cv::Scalar(220, 220, 220));
+  cv::Mat plain, guided;
+  HarmonicInpainter().inpaint(image, mask, plain);
+  HarmonicInpainter(guide, 10).inpaint(image, mask, guided);
+  EXPECT_NEAR(plain.at<float>(1, 9), 0.45, 1e-4);
+  EXPECT_NEAR(plain.at<float>(1, 10), 0.5, 1e-4);
+  EXPECT_LT(guided.at<float>(1, 9), 0.02);
+  EXPECT_GT(guided.at<float>(1, 10), 0.98);
+  EXPECT_THROW(
+      HarmonicInpainter(guide, 10).inpaint(image.colRange(0, 20), mask.colRange(0, 20), guided),
+      InvalidInput);
+  EXPECT_THROW(HarmonicInpainter(cv::Mat(3, width, CV_8UC3), 10), InvalidInput);
 }
 
 }  // namespace
