@@ -121,8 +121,9 @@ struct DepthFillStats {
 ///     the back-end the source pixels go to inverse depth 1/z, on
 ///     which a plane of the scene is linear in the pixel, normalised onto [0, 1] over the source
 ///     (as eq. 7–8 do for range images), minus the trend if any; the back-end restores the side
-///     with every other pixel of the window masked; the fill is clamped to the source's range
-///     widened by half on either side.
+///     with every other pixel of the window masked (the harmonic back-end, given a colour image,
+///     weighs each pair of neighbours by their colour affinity); the fill is clamped to the
+///     source's range widened by half on either side.
 DepthFillStats fill_depth(cv::InputArray depth, cv::InputArray invalid_mask, cv::OutputArray filled,
                           const DepthFillOptions& options = {});
 
