@@ -287,10 +287,12 @@ void add_guesses_of_line(End a, End b, cv::Point pixel, int line, const GuessRul
 }  // namespace
 
 cv::Mat fill_along_lines(const cv::Mat& z, const cv::Mat& data, const cv::Mat& to_fill,
-                         double discontinuity, int threads, const cv::Mat& color) {
+                         double discontinuity, int threads, const cv::Mat& color,
+                         cv::Mat* interpolated) {
   CV_Assert(z.type() == CV_32FC1 && data.type() == CV_8UC1 && to_fill.type() == CV_8UC1 &&
             data.size() == z.size() && to_fill.size() == z.size() && threads >= 1 &&
             (color.empty() || (color.type() == CV_32FC3 && color.size() == z.size())));
+  if (interpolated != nullptr) *interpolated = cv::Mat::zeros(z.size(), CV_8U);
   cv::Mat inverse(z.size(), CV_32F);
   for (int row = 0; row < z.rows; ++row) {
     const float* depth = z.ptr<float>(row);
@@ -324,6 +326,7 @@ cv::Mat fill_along_lines(const cv::Mat& z, const cv::Mat& data, const cv::Mat& t
                  }
                  if (interpolations.count > 0) {
                    filled.at<float>(pixel) = 1 / interpolations.surface_mean(rules);
+                   if (interpolated != nullptr) interpolated->at<std::uint8_t>(pixel) = 255;
                  } else if (constants.count > 0) {
                    filled.at<float>(pixel) = 1 / constants.surface_mean(rules);
                  }

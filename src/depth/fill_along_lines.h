@@ -29,8 +29,10 @@ constexpr float kFarSurfaceMargin = 4;
 /// With `color` (CV_32FC3, guide_color), each guess's weight is multiplied by the colour affinity
 /// of the pixel to the ends it comes from (color_guide.h), as a joint-bilateral filter weighs.
 /// O(pixels), no window per hole. Pixels left after a round are filled in the next from those
-/// filled, until none is left or a round fills none.
+/// filled, until none is left or a round fills none. `interpolated`, when given, receives CV_8UC1
+/// with 255 at the pixels filled by interpolations (some line's two ends on one surface).
 cv::Mat fill_along_lines(const cv::Mat& z, const cv::Mat& data, const cv::Mat& to_fill,
-                         double discontinuity, int threads, const cv::Mat& color = {});
+                         double discontinuity, int threads, const cv::Mat& color = {},
+                         cv::Mat* interpolated = nullptr);
 
 }  // namespace rangefill

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <exception>
 #include <limits>
-#include <optional>
+#include <memory>
 
 #include <Eigen/Dense>
 #include <opencv2/imgproc.hpp>
@@ -156,7 +156,8 @@ cv::Mat inside_silhouette(const cv::Mat& hole, const cv::Mat& rim) {
 
 // How much nearer (pixels) the occluding rim pixels than the others a hole pixel must be to lie on
 // the near side: the background goes on behind an occluder, a sensor's shadow beside it is on the
-// far side. Chosen on the depth kit's tuning frames (docs/depth-maps.md).
+// far side; and how near an occluding rim pixel a hole pixel must be for the sides to decide its
+// surface (step 4). Chosen on the depth kit's tuning frames (docs/depth-maps.md).
 constexpr float kNearSideMargin = 6;
 
 // Steps 1–2 of fill_depth for a hole's window: the hole's pixels on the far and the near side of
@@ -164,7 +165,8 @@ constexpr float kNearSideMargin = 6;
 struct HoleSides {
   cv::Mat back, front;                // CV_8U, the hole's pixels on either side
   cv::Mat back_source, front_source;  // CV_8U; empty when the side has no pixel
-  bool at_edge = false;               // some rim pixels occlude
+  cv::Mat beside_edge;   // CV_8U, hole pixels within kNearSideMargin of an occluding rim pixel
+  bool at_edge = false;  // some rim pixels occlude
   bool supported() const { return !back_source.empty() || !front_source.empty(); }
 };
 
@@ -211,6 +213,7 @@ HoleSides hole_sides(const cv::Mat& z, const cv::Mat& data, const cv::Mat& hole,
   }
   const cv::Mat to_front = distance_through(hole, front_rim);
   const cv::Mat to_back = distance_through(hole, back_rim);
+  sides.beside_edge = hole & (to_front <= kNearSideMargin);
   sides.front = (to_front + kNearSideMargin < to_back) &
                 inside_silhouette(hole, front_rim / 255 + back_rim / 128);
   if (cv::countNonZero(back_source) == 0) sides.front = hole;
@@ -246,14 +249,12 @@ void extend_source_beyond_reach(cv::Mat& z, cv::Mat& source, int reach) {
 }
 
 // Step 3 of fill_depth: depth (metres) at the hole pixels of a window, restored from `source`;
-// the harmonic back-end guided by the window's `color` (CV_32FC3) when there is one.
+// the back-end guided by the window's `color` (CV_32FC3) when there is one and it reads a guide.
 cv::Mat fill_from_source(const cv::Mat& z, const cv::Mat& hole, const cv::Mat& source,
                          const cv::Mat& color, const Inpainter& backend,
                          const DepthFillOptions& options) {
-  std::optional<HarmonicInpainter> guided;
-  if (!color.empty() && dynamic_cast<const HarmonicInpainter*>(&backend)) {
-    guided.emplace(color, kColorSigma);
-  }
+  const std::unique_ptr<Inpainter> guided =
+      color.empty() ? nullptr : backend.guided(color, kColorSigma);
   const Inpainter& inpainter = guided ? *guided : backend;
   // The source in inverse depth, normalised onto [0, 1].
   cv::Mat inverse;
@@ -282,6 +283,28 @@ cv::Mat fill_from_source(const cv::Mat& z, const cv::Mat& hole, const cv::Mat& s
     }
   }
   return filled;
+}
+
+// Step 4 of fill_depth: the hole pixels that lie between two valid pixels of one surface along a
+// line (fill_along_lines over every valid pixel of the window interpolates them) and not beside
+// an occluding edge take the lines' depth where `fill` (step 3) put them on another surface: away
+// from an edge, the sides' rule has no reason to move a pixel off the surface around it.
+void keep_interpolated_surfaces(const cv::Mat& z, const cv::Mat& data, const cv::Mat& hole,
+                                const cv::Mat& beside_edge, const cv::Mat& color,
+                                double discontinuity, cv::Mat& fill) {
+  cv::Mat interpolated;
+  const cv::Mat lines = fill_along_lines(z, data, hole, discontinuity, 1, color, &interpolated);
+  for (int row = 0; row < fill.rows; ++row) {
+    for (int col = 0; col < fill.cols; ++col) {
+      float& value = fill.at<float>(row, col);
+      const float line_value = lines.at<float>(row, col);
+      if (interpolated.at<std::uint8_t>(row, col) &&
+          (beside_edge.empty() || !beside_edge.at<std::uint8_t>(row, col)) &&
+          !same_surface(value, line_value, discontinuity)) {
+        value = line_value;
+      }
+    }
+  }
 }
 
 struct HoleOutcome {
@@ -371,6 +394,11 @@ HoleOutcome fill_depth_hole(const cv::Mat& z, const cv::Mat& data, const cv::Mat
   if (cv::countNonZero(unfilled) > 0) {
     fill_along_lines(z(window), data(window), unfilled, options.discontinuity, 1, window_color)
         .copyTo(fill, unfilled);
+  }
+  // Without an edge or a back-end, step 3 was this same fill along lines.
+  if (sides.at_edge || backend != nullptr) {
+    keep_interpolated_surfaces(z(window), data(window), hole, sides.beside_edge, window_color,
+                               options.discontinuity, fill);
   }
   for (int row = 0; row < window.height; ++row) {
     for (int col = 0; col < window.width; ++col) {

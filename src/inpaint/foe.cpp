@@ -2,12 +2,28 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "rangefill/core/errors.h"
+#include "rangefill/inpaint/foe_energy.h"
+#include "rangefill/inpaint/harmonic.h"
+
 namespace rangefill {
 
 FoeInpainter::FoeInpainter(FoeModel model, const FoeMapOptions& options,
-                           std::unique_ptr<Inpainter> start)
-    : model_(std::move(model)), options_(options), start_(std::move(start)) {
+                           std::unique_ptr<Inpainter> start, cv::Mat clique_weights)
+    : model_(std::move(model)),
+      options_(options),
+      start_(std::move(start)),
+      clique_weights_(std::move(clique_weights)) {
   if (start_) options_.start_from_image = true;
+  if (!clique_weights_.empty() && clique_weights_.type() != CV_64FC1) {
+    throw InvalidInput("foe: the clique weights must be CV_64FC1");
+  }
+}
+
+std::unique_ptr<Inpainter> FoeInpainter::guided(const cv::Mat& guide, float sigma) const {
+  return std::make_unique<FoeInpainter>(model_, options_,
+                                        std::make_unique<HarmonicInpainter>(guide, sigma),
+                                        foe_clique_weights(guide, model_.size, sigma));
 }
 
 void FoeInpainter::inpaint(cv::InputArray depth_in, cv::InputArray mask_in,
@@ -16,6 +32,9 @@ void FoeInpainter::inpaint(cv::InputArray depth_in, cv::InputArray mask_in,
   const cv::Mat depth = depth_in.getMat(), mask = mask_in.getMat();
   depth.copyTo(out);
   if (cv::countNonZero(mask) == 0) return;
+  if (!clique_weights_.empty() && clique_weights_.size() != depth.size()) {
+    throw InvalidInput("foe: the clique weights' size differs from the depth's");
+  }
 
   const int margin = model_.size / 2 + 1;
   cv::Rect crop = cv::boundingRect(mask);
@@ -33,7 +52,8 @@ void FoeInpainter::inpaint(cv::InputArray depth_in, cv::InputArray mask_in,
   } else {
     depth(crop).convertTo(image, CV_64F, 1.0 / divisor);
   }
-  const cv::Mat restored = foe_map(model_, image, mask(crop).clone(), options_);
+  const cv::Mat restored = foe_map(model_, image, mask(crop).clone(), options_,
+                                   clique_weights_.empty() ? cv::Mat() : clique_weights_(crop));
   cv::Mat result = out.getMat();
   for (int row = 0; row < crop.height; ++row) {
     for (int col = 0; col < crop.width; ++col) {

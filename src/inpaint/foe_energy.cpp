@@ -7,6 +7,7 @@
 
 #include "inpaint/foe_terms.h"
 #include "rangefill/core/errors.h"
+#include "rangefill/inpaint/harmonic.h"
 
 namespace rangefill {
 
@@ -70,7 +71,7 @@ void add_correlation_adjoint(const cv::Mat& z, const cv::Mat& kernel,
 }
 
 double energy_over(const FoeModel& model, const cv::Mat& x, const std::vector<CliqueRun>& runs,
-                   cv::Mat* gradient, CliqueWeights* weights) {
+                   cv::Mat* gradient, CliqueWeights* weights, const cv::Mat& clique_weights) {
   if (gradient) *gradient = cv::Mat::zeros(x.size(), CV_64F);
   const int count = model.count();
   if (weights) {
@@ -81,10 +82,12 @@ double energy_over(const FoeModel& model, const cv::Mat& x, const std::vector<Cl
   for (int i = 0; i < count; ++i) {
     const cv::Mat kernel = model.filters[i] * model.input_scale;
     cv::Mat y = correlate(x, kernel, runs);
-    const double alpha = model.alphas[i];
     for (const CliqueRun& run : runs) {
       double* line = y.ptr<double>(run.row);
+      const double* clique_weight =
+          clique_weights.empty() ? nullptr : clique_weights.ptr<double>(run.row);
       for (int col = run.begin; col < run.end; ++col) {
+        const double alpha = model.alphas[i] * (clique_weight ? clique_weight[col] : 1);
         const double half_square = 0.5 * line[col] * line[col];
         energy += alpha * std::log1p(half_square);
         const double weight = alpha / (1 + half_square);
@@ -106,10 +109,10 @@ void check_energy_argument(const cv::Mat& x) {
 }
 
 Evaluation evaluate(const FoeModel& model, const cv::Mat& x, const std::vector<CliqueRun>& runs,
-                    const Unknowns& unknowns) {
+                    const Unknowns& unknowns, const cv::Mat& clique_weights) {
   Evaluation evaluation;
   cv::Mat gradient;
-  evaluation.energy = energy_over(model, x, runs, &gradient, &evaluation.weights);
+  evaluation.energy = energy_over(model, x, runs, &gradient, &evaluation.weights, clique_weights);
   evaluation.gradient.resize(unknowns.pixels.size());
   for (size_t k = 0; k < unknowns.pixels.size(); ++k) {
     evaluation.gradient[k] = gradient.at<double>(unknowns.pixels[k]);
@@ -139,10 +142,35 @@ double foe_energy(const FoeModel& model, const cv::Mat& x, cv::Mat* gradient) {
 }
 
 double foe_energy_of_unknowns(const FoeModel& model, const cv::Mat& x, const cv::Mat& mask,
-                              cv::Mat* gradient) {
+                              cv::Mat* gradient, const cv::Mat& clique_weights) {
   check_energy_argument(x);
   CV_Assert(mask.type() == CV_8UC1 && mask.size() == x.size());
-  return energy_over(model, x, cliques_touching(mask, model.size / 2), gradient);
+  CV_Assert(clique_weights.empty() ||
+            (clique_weights.type() == CV_64FC1 && clique_weights.size() == x.size()));
+  return energy_over(model, x, cliques_touching(mask, model.size / 2), gradient, nullptr,
+                     clique_weights);
+}
+
+cv::Mat foe_clique_weights(const cv::Mat& guide, int size, float sigma) {
+  if (guide.type() != CV_32FC3 || !(sigma > 0)) {
+    throw InvalidInput("foe: the guide must be CV_32FC3 and its sigma above 0");
+  }
+  const int r = size / 2;
+  cv::Mat weights(guide.size(), CV_64F, cv::Scalar(1));
+  for (int row = r; row < guide.rows - r; ++row) {
+    for (int col = r; col < guide.cols - r; ++col) {
+      const cv::Vec3f& centre = guide.at<cv::Vec3f>(row, col);
+      float least = 1;
+      for (int dy = -r; dy <= r; ++dy) {
+        for (int dx = -r; dx <= r; ++dx) {
+          least = std::min(least,
+                           guide_affinity(centre, guide.at<cv::Vec3f>(row + dy, col + dx), sigma));
+        }
+      }
+      weights.at<double>(row, col) = least;
+    }
+  }
+  return weights;
 }
 
 Eigen::SparseMatrix<double> foe_hessian_of_unknowns(const FoeModel& model, const cv::Mat& x,

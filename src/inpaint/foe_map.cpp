@@ -30,7 +30,7 @@ double ridge_of(const FoeModel& model) {
 // foe_map's newton method on x. One function on purpose: the kind of matrix, whether it was made
 // at x and the last gain are the state of one step rule, which reads best in one place.
 cv::Mat newton_map(const FoeModel& model, cv::Mat x, const cv::Mat& mask,
-                   const FoeMapOptions& options) {
+                   const FoeMapOptions& options, const cv::Mat& clique_weights) {
   InferenceProblem problem(model, mask);
   const std::vector<cv::Point>& unknowns = problem.unknowns.pixels;
   const int count = model.count();
@@ -38,8 +38,11 @@ cv::Mat newton_map(const FoeModel& model, cv::Mat x, const cv::Mat& mask,
   std::vector<double> gaussian(x.total() * count, 0.0);
   for (const CliqueRun& run : problem.runs) {
     for (int col = run.begin; col < run.end; ++col) {
-      std::copy(model.alphas.begin(), model.alphas.end(),
-                gaussian.begin() + (static_cast<size_t>(run.row) * x.cols + col) * count);
+      const double weight = clique_weights.empty() ? 1 : clique_weights.at<double>(run.row, col);
+      for (int i = 0; i < count; ++i) {
+        gaussian[(static_cast<size_t>(run.row) * x.cols + col) * count + i] =
+            weight * model.alphas[i];
+      }
     }
   }
   // CHOLMOD's supernodal Cholesky: on the (4r + 1)²-point stencils of 5×5 filters it factorises
@@ -71,7 +74,7 @@ cv::Mat newton_map(const FoeModel& model, cv::Mat x, const cv::Mat& mask,
   // the tolerance, or when a matrix made at x gains less.
   enum class Matrix { bound, other } kind = Matrix::bound;
   bool fresh = false;  // M was made at x
-  Evaluation current = evaluate(model, x, problem.runs, problem.unknowns);
+  Evaluation current = evaluate(model, x, problem.runs, problem.unknowns, clique_weights);
   auto refresh_with_bound = [&] {
     solver.factorize(problem.matrices.assemble(current.weights.half_quadratic, ridge));
     kind = Matrix::bound;
@@ -109,7 +112,7 @@ cv::Mat newton_map(const FoeModel& model, cv::Mat x, const cv::Mat& mask,
     bool taken = false;
     for (double length = 1; length >= 0.25 && !taken; length /= 2) {
       trial = moved(x, step, length);
-      next = evaluate(model, trial, problem.runs, problem.unknowns);
+      next = evaluate(model, trial, problem.runs, problem.unknowns, clique_weights);
       gain = current.energy - next.energy;
       taken = gain >= 0 || (gain >= -resolution && next.gradient.lpNorm<Eigen::Infinity>() <
                                                        current.gradient.lpNorm<Eigen::Infinity>());
@@ -210,14 +213,19 @@ LaplacianPolynomial fit_laplacian_polynomial(const FoeModel& model) {
 // E and ∇E over the unknowns for the lbfgs method: the responses of every filter at the cliques
 // that see an unknown as blocked matrix products (taps × cliques patches) in single precision,
 // twice the SIMD width of double on the baseline x86-64 target; E and ∇E summed in double, in one
-// order at any thread count.
+// order at any thread count. Each clique's terms times its `clique_weights` (empty: 1).
 class BlockedEnergy {
  public:
-  BlockedEnergy(const FoeModel& model, const cv::Mat& mask, const Unknowns& unknowns)
+  BlockedEnergy(const FoeModel& model, const cv::Mat& mask, const Unknowns& unknowns,
+                const cv::Mat& clique_weights)
       : unknowns_(unknowns), alphas_(model.alphas) {
     const int r = model.size / 2, taps = model.size * model.size;
     for (const CliqueRun& run : cliques_touching(mask, r)) {
-      for (int col = run.begin; col < run.end; ++col) centres_.push_back(run.row * mask.cols + col);
+      for (int col = run.begin; col < run.end; ++col) {
+        centres_.push_back(run.row * mask.cols + col);
+        if (!clique_weights.empty())
+          clique_weights_.push_back(clique_weights.at<double>(run.row, col));
+      }
     }
     filters_.resize(model.count(), taps);
     for (int i = 0; i < model.count(); ++i) {
@@ -253,17 +261,20 @@ class BlockedEnergy {
       }
       responses_.leftCols(block).noalias() = filters_ * patches_.leftCols(block);
       // Σ α_i log(1 + y²/2) as α_i log of products of four factors: as y is a float, each factor
-      // is below 6e76 and a product of four stays finite; a quarter of the logarithms.
+      // is below 6e76 and a product of four stays finite; a quarter of the logarithms. Weighted
+      // cliques each take their own logarithms.
+      const bool weighted = !clique_weights_.empty();
       for (int c = 0; c < block; ++c) {
         float* y = responses_.col(c).data();
-        if (c % 4 == 0) std::fill(product.begin(), product.end(), 1.0);
+        const double weight = weighted ? clique_weights_[first + c] : 1;
+        if (weighted || c % 4 == 0) std::fill(product.begin(), product.end(), 1.0);
         for (int i = 0; i < count; ++i) {
           const double response = y[i], factor = 1 + 0.5 * response * response;
           product[i] *= factor;
-          y[i] = static_cast<float>(alphas_[i] * response / factor);  // ψ_i(y)
+          y[i] = static_cast<float>(weight * alphas_[i] * response / factor);  // ψ_i(y)
         }
-        if (c % 4 == 3 || c == block - 1) {
-          for (int i = 0; i < count; ++i) energy += alphas_[i] * std::log(product[i]);
+        if (weighted || c % 4 == 3 || c == block - 1) {
+          for (int i = 0; i < count; ++i) energy += weight * alphas_[i] * std::log(product[i]);
         }
       }
       back_.leftCols(block).noalias() = filters_.transpose() * responses_.leftCols(block);
@@ -283,9 +294,10 @@ class BlockedEnergy {
  private:
   const Unknowns& unknowns_;
   std::vector<double> alphas_;
-  std::vector<int> centres_;  // of the cliques, as offsets into the image's data
-  std::vector<int> offsets_;  // of the taps from the centre, row-major over the filter
-  Eigen::MatrixXf filters_;   // count × taps, scaled by the model's input scale
+  std::vector<int> centres_;            // of the cliques, as offsets into the image's data
+  std::vector<double> clique_weights_;  // of the cliques, or empty
+  std::vector<int> offsets_;            // of the taps from the centre, row-major over the filter
+  Eigen::MatrixXf filters_;             // count × taps, scaled by the model's input scale
   Eigen::MatrixXf patches_, responses_, back_;
   cv::Mat full_gradient_;
 };
@@ -329,7 +341,8 @@ class ChebyshevInverse {
 // L + tL², a 13-point matrix that alone costs most of the time budget), hence the loop here, in
 // one function like newton_map: the two-loop recursion and the line search share its history.
 cv::Mat lbfgs_map(const FoeModel& model, const LaplacianPolynomial& polynomial, cv::Mat x,
-                  const cv::Mat& mask, const FoeMapOptions& options) {
+                  const cv::Mat& mask, const FoeMapOptions& options,
+                  const cv::Mat& clique_weights) {
   constexpr int kMemory = 10;       // correction pairs kept
   constexpr double kArmijo = 1e-4;  // sufficient decrease
   const Unknowns unknowns(mask);
@@ -348,7 +361,7 @@ cv::Mat lbfgs_map(const FoeModel& model, const LaplacianPolynomial& polynomial, 
     for (int k = 0; k < n; ++k) x.at<double>(unknowns.pixels[k]) = u[k];
   };
 
-  BlockedEnergy energy_of(model, mask, unknowns);
+  BlockedEnergy energy_of(model, mask, unknowns, clique_weights);
   Eigen::VectorXd u(n), gradient;
   if (options.start_from_image) {
     for (int k = 0; k < n; ++k) u[k] = x.at<double>(unknowns.pixels[k]);
@@ -419,7 +432,7 @@ cv::Mat lbfgs_map(const FoeModel& model, const LaplacianPolynomial& polynomial, 
 // unknowns more than 2r apart (r the filters' radius) share no clique, so the groups' MAPs are
 // independent, and smaller problems factorise and converge faster (a depth map's many holes).
 cv::Mat lbfgs_map_by_groups(const FoeModel& model, cv::Mat x, const cv::Mat& mask,
-                            const FoeMapOptions& options) {
+                            const FoeMapOptions& options, const cv::Mat& clique_weights) {
   const int reach = 2 * (model.size / 2);
   const LaplacianPolynomial polynomial = fit_laplacian_polynomial(model);
   cv::Mat grown, labels, stats, centroids;
@@ -435,7 +448,8 @@ cv::Mat lbfgs_map_by_groups(const FoeModel& model, cv::Mat x, const cv::Mat& mas
                    box.height + 2 * reach) &
           cv::Rect(0, 0, x.cols, x.rows);
     const cv::Mat unknowns = (labels(box) == group) & mask(box);
-    const cv::Mat part = lbfgs_map(model, polynomial, x(box).clone(), unknowns, options);
+    const cv::Mat part = lbfgs_map(model, polynomial, x(box).clone(), unknowns, options,
+                                   clique_weights.empty() ? cv::Mat() : clique_weights(box));
     part.copyTo(x(box), unknowns);
   }
   return x;
@@ -444,9 +458,11 @@ cv::Mat lbfgs_map_by_groups(const FoeModel& model, cv::Mat x, const cv::Mat& mas
 }  // namespace
 
 cv::Mat foe_map(const FoeModel& model, const cv::Mat& image, const cv::Mat& mask,
-                const FoeMapOptions& options) {
+                const FoeMapOptions& options, const cv::Mat& clique_weights) {
   check_energy_argument(image);
   CV_Assert(mask.type() == CV_8UC1 && mask.size() == image.size());
+  CV_Assert(clique_weights.empty() ||
+            (clique_weights.type() == CV_64FC1 && clique_weights.size() == image.size()));
   cv::Mat x = image.clone();
   const int unknowns = cv::countNonZero(mask);
   if (unknowns == 0) return x;
@@ -456,8 +472,9 @@ cv::Mat foe_map(const FoeModel& model, const cv::Mat& image, const cv::Mat& mask
   } else {
     x.setTo(0, mask);
   }
-  return options.method == FoeMapMethod::newton ? newton_map(model, x, mask, options)
-                                                : lbfgs_map_by_groups(model, x, mask, options);
+  return options.method == FoeMapMethod::newton
+             ? newton_map(model, x, mask, options, clique_weights)
+             : lbfgs_map_by_groups(model, x, mask, options, clique_weights);
 }
 
 }  // namespace rangefill

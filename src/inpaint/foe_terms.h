@@ -39,10 +39,12 @@ struct CliqueWeights {
   std::vector<double> curvature;  // α_i ρ''(y) = α_i (1 − y²/2) / (1 + y²/2)²: the Hessian
 };
 
-// E over the cliques of `runs` (Roth & Black's eq. for the FoE energy), ∇E into `gradient` and the
-// clique weights at x into `weights`.
+// E over the cliques of `runs` (Roth & Black's eq. for the FoE energy), each clique's terms times
+// its `clique_weights` (CV_64F; empty: 1), ∇E into `gradient` and the clique weights at x into
+// `weights`.
 double energy_over(const FoeModel& model, const cv::Mat& x, const std::vector<CliqueRun>& runs,
-                   cv::Mat* gradient, CliqueWeights* weights = nullptr);
+                   cv::Mat* gradient, CliqueWeights* weights = nullptr,
+                   const cv::Mat& clique_weights = cv::Mat());
 
 // Throws InvalidInput unless x is CV_64FC1.
 void check_energy_argument(const cv::Mat& x);
@@ -153,7 +155,7 @@ struct Evaluation {
 };
 
 Evaluation evaluate(const FoeModel& model, const cv::Mat& x, const std::vector<CliqueRun>& runs,
-                    const Unknowns& unknowns);
+                    const Unknowns& unknowns, const cv::Mat& clique_weights = cv::Mat());
 
 // What foe_map and foe_hessian_of_unknowns share: the unknowns, the cliques that see them, and
 // the matrices of quadratic forms over them.

@@ -4,6 +4,10 @@
 
 namespace rangefill {
 
+std::unique_ptr<Inpainter> Inpainter::guided(const cv::Mat& /*guide*/, float /*sigma*/) const {
+  return nullptr;
+}
+
 int start_inpainting(cv::InputArray depth, cv::InputArray mask, cv::OutputArray out,
                      const std::string& who) {
   check_inpaint_arguments(depth, mask, who);

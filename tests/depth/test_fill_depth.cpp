@@ -318,9 +318,28 @@ TEST(FillDepth, ANearSurfaceGoesOnAcrossTheSilhouetteAHoleCrosses) {
   EXPECT_LT(max_error(filled, truth, far_from_silhouette), 1e-5);
 }
 
+// A slit into a near surface from a hole across its silhouette: the slit's rim does not occlude,
+// so the sides' rule puts the slit on the far side, filled from the near surface and the wall
+// behind at once; every slit pixel between two pixels of the near surface, away from the occluding
+// edge, is on the near surface (step 4).
+TEST(FillDepth, APixelBetweenTwoPixelsOfOneSurfaceAwayFromAnEdgeIsOnIt) {
+  cv::Mat truth(kSize, CV_32F, cv::Scalar(3.0f));
+  truth.rowRange(240, 480).setTo(1.0f);
+  cv::Mat hole = disc({320, 240}, 30);
+  hole(cv::Rect(318, 240, 5, 240)).setTo(255);
+  cv::Mat input = truth.clone();
+  input.setTo(0, hole);
+  cv::Mat filled;
+  const DepthFillStats stats = fill_depth(input, cv::noArray(), filled);
+  EXPECT_EQ(stats.at_edge, 1);
+  cv::Mat away_from_edge = hole.clone();
+  away_from_edge.rowRange(0, 248).setTo(0);
+  EXPECT_LT(max_error(filled, truth, away_from_edge), 1e-3);
+}
+
 // A colour image parts what depth alone cannot: a picture 3 % in front of its wall (one surface
 // under the 5 % discontinuity) keeps its depth up to its colour edge, where without colour the
-// fill blends the two across the hole; along lines and by the (default) harmonic back-end.
+// fill blends the two across the hole; along lines, by the (default) harmonic back-end and by foe.
 class ColourGuidance : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ColourGuidance, AColourEdgePartsTheGuessesOfOneSurface) {
@@ -354,7 +373,8 @@ TEST_P(ColourGuidance, AColourEdgePartsTheGuessesOfOneSurface) {
   EXPECT_EQ(cv::norm(from_grey, guided, cv::NORM_INF), 0);
 }
 
-INSTANTIATE_TEST_SUITE_P(FillDepth, ColourGuidance, ::testing::Values(kAlongLines, "harmonic"));
+INSTANTIATE_TEST_SUITE_P(FillDepth, ColourGuidance,
+                         ::testing::Values(kAlongLines, "harmonic", "foe"));
 
 // A colour image of another size or type is refused, saying which.
 TEST(FillDepth, RefusesAColourImageThatDoesNotMatch) {

@@ -85,6 +85,49 @@ TEST(FoeMap, LbfgsEndsWhereNewtonDoes) {
   }
 }
 
+// Clique weights (foe_clique_weights of a guide with an edge) enter E, ∇E and both methods alike:
+// Newton ends at a stationary point of the weighted E, lbfgs run to convergence where Newton does
+// (its preconditioner does not see the weights, so it takes more steps), and weights of 1 are no
+// weights.
+TEST(FoeMap, CliqueWeightsEnterBothMethods) {
+  const FoeModel model = load_foe_model("depth");
+  cv::Mat image(40, 40, CV_64F), mask = cv::Mat::zeros(image.size(), CV_8U);
+  cv::Mat guide(image.size(), CV_32FC3, cv::Scalar(200, 200, 200));
+  guide.colRange(0, 20).setTo(cv::Scalar(20, 40, 60));
+  for (int r = 0; r < image.rows; ++r) {
+    for (int c = 0; c < image.cols; ++c) {
+      image.at<double>(r, c) = (c < 20 ? 0.2 : 0.8) + 0.01 * r;
+      if ((c - 20) * (c - 20) + (r - 20) * (r - 20) < 81) mask.at<std::uint8_t>(r, c) = 255;
+    }
+  }
+  const cv::Mat weights = foe_clique_weights(guide, model.size, 10);
+  double lowest = 0, highest = 0;
+  cv::minMaxLoc(weights, &lowest, &highest);
+  EXPECT_LT(lowest, 1e-2);
+  EXPECT_EQ(highest, 1);
+  FoeMapOptions exact;
+  exact.method = FoeMapMethod::newton;
+  exact.function_tolerance = 0;
+  const cv::Mat newton = foe_map(model, image, mask, exact, weights);
+  cv::Mat gradient;
+  const double e_newton = foe_energy_of_unknowns(model, newton, mask, &gradient, weights);
+  double largest = 0;
+  cv::minMaxLoc(cv::abs(gradient), nullptr, &largest, nullptr, nullptr, mask);
+  EXPECT_LT(largest, 1e-9);
+  FoeMapOptions longer;
+  longer.max_iterations = 2000;
+  longer.function_tolerance = 0;
+  const cv::Mat lbfgs = foe_map(model, image, mask, longer, weights);
+  EXPECT_EQ(cv::norm(lbfgs, image, cv::NORM_INF, ~mask), 0);
+  const double e_lbfgs = foe_energy_of_unknowns(model, lbfgs, mask, nullptr, weights);
+  EXPECT_LT(e_lbfgs, e_newton + 1e-4 * std::abs(e_newton));
+  EXPECT_LT(cv::norm(lbfgs, newton, cv::NORM_INF, mask), 1e-2);
+  const cv::Mat ones = cv::Mat::ones(image.size(), CV_64F);
+  EXPECT_LT(
+      cv::norm(foe_map(model, image, mask, {}, ones), foe_map(model, image, mask), cv::NORM_INF),
+      1e-6);
+}
+
 // With start_from_image, inference starts from the unknowns' values given: zero steps return them
 // unchanged, and steps lower E from there. A start that is not finite is refused.
 TEST(FoeMap, StartsFromTheImageWhenAsked) {

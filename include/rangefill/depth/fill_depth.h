@@ -43,7 +43,7 @@ struct DepthFillOptions {
   long long backend_max_pixels = 2000;
   /// A colour image registered to the depth (CV_8UC3, BGR or RGB; or CV_8UC1 grey), or empty.
   /// With it, a colour edge parts the sides of an occluding edge (step 2) and weakens the guesses
-  /// that cross it (step 3); without it nothing changes.
+  /// and the smoothness (harmonic, foe) that cross it (steps 3–4); without it nothing changes.
   cv::Mat color;
   InpainterOptions inpainting = depth_inpainting_defaults();
   int threads = hardware_threads();  // holes filled at once; the result does not depend on it
@@ -121,9 +121,17 @@ struct DepthFillStats {
 ///     the back-end the source pixels go to inverse depth 1/z, on
 ///     which a plane of the scene is linear in the pixel, normalised onto [0, 1] over the source
 ///     (as eq. 7–8 do for range images), minus the trend if any; the back-end restores the side
-///     with every other pixel of the window masked (the harmonic back-end, given a colour image,
-///     weighs each pair of neighbours by their colour affinity); the fill is clamped to the
-///     source's range widened by half on either side.
+///     with every other pixel of the window masked (given a colour image, the harmonic back-end
+///     weighs each pair of neighbours by their colour affinity, and foe each clique of its experts
+///     by the least affinity of its pixels to its centre, starting from the guided harmonic fill);
+///     the fill is clamped to the source's range widened by half on either side.
+///  4. Away from the edges. A hole pixel that lies between two valid pixels of one surface along
+///     its row, column or a diagonal (fill_along_lines over every valid pixel of the window
+///     interpolates it) and is more than 6 pixels from every occluding rim pixel, through the
+///     hole, takes the lines' depth where step 3 put it on another surface: the sides' rule is
+///     for pixels beside an edge, and a hole that merges with a large invalid region (the frame's
+///     border, a shadow) has a rim of several surfaces that it can misassign. Holes without an
+///     edge that are filled along lines skip it (step 3 was that fill).
 DepthFillStats fill_depth(cv::InputArray depth, cv::InputArray invalid_mask, cv::OutputArray filled,
                           const DepthFillOptions& options = {});
 

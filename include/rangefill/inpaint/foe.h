@@ -20,19 +20,25 @@ struct FoeBackendOptions {
 /// MAP inpainting (foe_map) on the mask's bounding box grown by the filter
 /// footprint (the only cliques that change), inputs divided by foe_input_divisor. Known pixels are
 /// returned exactly. With a `start` back-end, inference starts from that back-end's fill of the
-/// image (options.start_from_image is then implied) instead of the harmonic fill.
+/// image (options.start_from_image is then implied) instead of the harmonic fill. With
+/// `clique_weights` (foe_clique_weights, the size of the images to inpaint; empty for none), each
+/// clique's experts count by its weight.
 class FoeInpainter : public Inpainter {
  public:
   explicit FoeInpainter(FoeModel model, const FoeMapOptions& options = {},
-                        std::unique_ptr<Inpainter> start = nullptr);
+                        std::unique_ptr<Inpainter> start = nullptr, cv::Mat clique_weights = {});
   std::string name() const override { return "foe"; }
   void inpaint(cv::InputArray depth, cv::InputArray mask, cv::OutputArray out) const override;
+  /// Cliques weighted by foe_clique_weights(guide, model().size, sigma); inference starts from the
+  /// harmonic fill guided alike (the start given otherwise reads no guide).
+  std::unique_ptr<Inpainter> guided(const cv::Mat& guide, float sigma) const override;
   const FoeModel& model() const { return model_; }
 
  private:
   FoeModel model_;
   FoeMapOptions options_;
   std::unique_ptr<Inpainter> start_;
+  cv::Mat clique_weights_;
 };
 
 }  // namespace rangefill

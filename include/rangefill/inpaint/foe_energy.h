@@ -19,8 +19,18 @@ double foe_energy(const FoeModel& model, const cv::Mat& x, cv::Mat* gradient = n
 /// E(x) up to a constant of the unmasked pixels: the sum over the cliques that cover a pixel of
 /// `mask` (CV_8U, non-zero = unknown) only, which is all that inference needs; ∇E is exact at the
 /// masked pixels.
+/// With `clique_weights` (foe_clique_weights; empty for none), each clique's terms count by its
+/// weight.
 double foe_energy_of_unknowns(const FoeModel& model, const cv::Mat& x, const cv::Mat& mask,
-                              cv::Mat* gradient = nullptr);
+                              cv::Mat* gradient = nullptr,
+                              const cv::Mat& clique_weights = cv::Mat());
+
+/// The weight w_c of each clique of `size`×`size` filters, at its centre, given a guide image
+/// (CV_32FC3, a registered colour image): the least guide_affinity(guide(centre), guide(tap),
+/// sigma) over its taps (harmonic.h), so that a clique across an edge of the guide counts little
+/// in E, as a colorization weight does across a colour edge. CV_64F of the guide's size; 1 where
+/// the filter leaves the image. Throws InvalidInput on another type or a sigma not above 0.
+cv::Mat foe_clique_weights(const cv::Mat& guide, int size, float sigma);
 
 /// ∂²E/∂u² at x over the unknowns u, the pixels of `mask` (CV_8U, non-zero) in row-major order:
 /// Σ_i α_i Σ_c ρ''(y_ic) J_ic J_icᵀ with ρ(y) = log(1 + y²/2). Positive definite at a strict local

@@ -39,7 +39,10 @@ struct FoeMapOptions {
 ///    weights (log(1 + y²/2) replaced by y²/2), a quadratic upper bound of E everywhere; when
 ///    progress slows, the Hessian of E where it is positive definite (Newton), else the
 ///    half-quadratic bound of Geman & Yang at the current point. Every step lowers E.
+/// With `clique_weights` (CV_64F, the image's size, foe_clique_weights; empty for none), E is
+/// Σ_i α_i Σ_c w_c log(1 + ½ y_ic²), w_c read at the clique's centre; lbfgs's preconditioner
+/// stays that of the unweighted field, so weights far below 1 take it more steps.
 cv::Mat foe_map(const FoeModel& model, const cv::Mat& image, const cv::Mat& mask,
-                const FoeMapOptions& options = {});
+                const FoeMapOptions& options = {}, const cv::Mat& clique_weights = cv::Mat());
 
 }  // namespace rangefill

@@ -32,6 +32,9 @@ class HarmonicInpainter : public Inpainter {
   HarmonicInpainter(cv::Mat guide, float sigma);
   std::string name() const override { return "harmonic"; }
   void inpaint(cv::InputArray depth, cv::InputArray mask, cv::OutputArray out) const override;
+  std::unique_ptr<Inpainter> guided(const cv::Mat& guide, float sigma) const override {
+    return std::make_unique<HarmonicInpainter>(guide, sigma);
+  }
 
  private:
   cv::Mat guide_;

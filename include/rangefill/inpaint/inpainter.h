@@ -19,6 +19,10 @@ class Inpainter {
   virtual ~Inpainter() = default;
   virtual std::string name() const = 0;
   virtual void inpaint(cv::InputArray depth, cv::InputArray mask, cv::OutputArray out) const = 0;
+  /// This back-end guided by `guide` (CV_32FC3, a registered colour image the size of the images
+  /// it will inpaint): the smoothness between two pixels weakened by their guide_affinity(…,
+  /// sigma) (harmonic.h). nullptr when the back-end reads no guide.
+  virtual std::unique_ptr<Inpainter> guided(const cv::Mat& guide, float sigma) const;
 };
 
 /// Checks the inpaint() preconditions above; throws InvalidInput naming `who` otherwise.
