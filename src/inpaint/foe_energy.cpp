@@ -108,6 +108,11 @@ void check_energy_argument(const cv::Mat& x) {
   CV_Assert(x.type() == CV_64FC1);
 }
 
+void check_clique_weights(const cv::Mat& clique_weights, const cv::Mat& x) {
+  CV_Assert(clique_weights.empty() ||
+            (clique_weights.type() == CV_64FC1 && clique_weights.size() == x.size()));
+}
+
 Evaluation evaluate(const FoeModel& model, const cv::Mat& x, const std::vector<CliqueRun>& runs,
                     const Unknowns& unknowns, const cv::Mat& clique_weights) {
   Evaluation evaluation;
@@ -145,8 +150,7 @@ double foe_energy_of_unknowns(const FoeModel& model, const cv::Mat& x, const cv:
                               cv::Mat* gradient, const cv::Mat& clique_weights) {
   check_energy_argument(x);
   CV_Assert(mask.type() == CV_8UC1 && mask.size() == x.size());
-  CV_Assert(clique_weights.empty() ||
-            (clique_weights.type() == CV_64FC1 && clique_weights.size() == x.size()));
+  check_clique_weights(clique_weights, x);
   return energy_over(model, x, cliques_touching(mask, model.size / 2), gradient, nullptr,
                      clique_weights);
 }

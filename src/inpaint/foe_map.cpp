@@ -461,8 +461,7 @@ cv::Mat foe_map(const FoeModel& model, const cv::Mat& image, const cv::Mat& mask
                 const FoeMapOptions& options, const cv::Mat& clique_weights) {
   check_energy_argument(image);
   CV_Assert(mask.type() == CV_8UC1 && mask.size() == image.size());
-  CV_Assert(clique_weights.empty() ||
-            (clique_weights.type() == CV_64FC1 && clique_weights.size() == image.size()));
+  check_clique_weights(clique_weights, image);
   cv::Mat x = image.clone();
   const int unknowns = cv::countNonZero(mask);
   if (unknowns == 0) return x;

@@ -49,6 +49,9 @@ double energy_over(const FoeModel& model, const cv::Mat& x, const std::vector<Cl
 // Throws InvalidInput unless x is CV_64FC1.
 void check_energy_argument(const cv::Mat& x);
 
+// Asserts that `clique_weights` is empty or CV_64FC1 of x's size.
+void check_clique_weights(const cv::Mat& clique_weights, const cv::Mat& x);
+
 // The unknown pixels of `mask` in row-major order, and each one's number (−1 elsewhere).
 struct Unknowns {
   explicit Unknowns(const cv::Mat& mask) : index(mask.size(), CV_32S, cv::Scalar(-1)) {
